@@ -1,0 +1,80 @@
+// Images in memory and their encoding. One interface, two backends chosen at configure time
+// (LGH_IMAGE_IO=oiio|lean); nothing outside renderer/src/image knows which one is built.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "lgh/request.hpp"
+
+namespace lgh {
+
+// Linear-light float RGBA, rows top to bottom.
+struct FloatImage {
+  int width = 0;
+  int height = 0;
+  std::vector<float> rgba;  // width * height * 4
+
+  float* pixel(int x, int y) { return &rgba[(static_cast<size_t>(y) * width + x) * 4]; }
+  const float* pixel(int x, int y) const {
+    return &rgba[(static_cast<size_t>(y) * width + x) * 4];
+  }
+};
+
+// 8-bit image, `channels` 1..4, rows top to bottom.
+struct Image8 {
+  int width = 0;
+  int height = 0;
+  int channels = 4;
+  std::vector<std::uint8_t> pixels;
+};
+
+// Text attributes written into files: PNG tEXt chunks, EXR string attributes.
+using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
+
+namespace image_io {
+
+// Name of the backend compiled in: "oiio" or "lean".
+const char* backendName();
+
+// PNG, 8 bits per channel, channels as given (3 = RGB, 4 = RGBA).
+std::vector<std::uint8_t> encodePng(const Image8& image, const ImageMetadata& metadata = {});
+// OpenEXR, RGBA, half or float, linear.
+std::vector<std::uint8_t> encodeExr(const FloatImage& image, bool halfFloat,
+                                    const ImageMetadata& metadata = {});
+
+// Decoded file contents, for tests and for reading back what was written.
+struct Decoded {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  bool isFloat = false;
+  std::vector<std::uint8_t> pixels8;  // when !isFloat
+  std::vector<float> pixelsFloat;     // when isFloat
+  ImageMetadata metadata;
+};
+// Decodes PNG or EXR (and JPEG; with OIIO every format it reads) from memory.
+// Throws lgh::Error(Invalid) with `what` naming the source on a broken file.
+Decoded decode(const std::vector<std::uint8_t>& bytes, const std::string& what);
+
+// Texture images for glTF: PNG and JPEG in both backends, always decoded to 8-bit RGBA.
+Image8 decodeTextureRgba8(const std::uint8_t* data, std::size_t size, const std::string& what);
+
+void writeFile(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes);
+std::vector<std::uint8_t> readFile(const std::filesystem::path& path);
+
+}  // namespace image_io
+
+// Tone mapping (ToneMap) + exposure + sRGB encoding of a linear image to 8 bits.
+Image8 toDisplay8(const FloatImage& linear, ToneMap toneMap, float exposure, bool keepAlpha);
+
+// Encodes in the request's format (PNG: tone-mapped sRGB; EXR: linear).
+std::vector<std::uint8_t> encodeImage(const FloatImage& linear, const OutputSettings& output,
+                                      const ImageMetadata& metadata = {});
+const char* mimeType(ImageFormat format);
+const char* fileExtension(ImageFormat format);
+
+}  // namespace lgh

@@ -1,0 +1,136 @@
+// The typed form of a render request: what the JSON of proto/render-request.schema.json turns
+// into after validation. Passes and the scene code take these structs, never JSON.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "lgh/error.hpp"
+
+namespace lgh {
+
+enum class LightType { Directional, Point, Spot };
+
+// A light given in the request (beside the ones of the glTF asset). Units follow
+// KHR_lights_punctual: point/spot intensity in candela, directional in lux.
+struct LightDesc {
+  LightType type = LightType::Point;
+  std::array<float, 3> position{0, 0, 0};
+  std::array<float, 3> direction{0, -1, 0};  // where the light points (directional, spot)
+  std::array<float, 3> color{1, 1, 1};
+  float intensity = 1.0F;
+  // The lecture's attenuation 1 / (kc + kl*d + kq*d^2); glTF lights default to inverse square.
+  std::array<float, 3> attenuation{0, 0, 1};
+  float range = 0.0F;  // 0: unlimited
+  float innerConeAngle = 0.0F;
+  float outerConeAngle = 0.785398F;
+  float spotExponent = 0.0F;  // the lecture's spot effect cos^exponent, added to the cone falloff
+};
+
+// Where the scene comes from.
+struct SceneSource {
+  enum class Kind { Demo, AssetPath, InlineGlb, UploadedGltf };
+  Kind kind = Kind::Demo;
+  std::string assetPath;              // relative to the asset root (AssetPath)
+  std::vector<std::uint8_t> glbBytes;  // decoded base64 or an uploaded .glb (InlineGlb)
+  // An uploaded .gltf (UploadedGltf): its file name and every uploaded file by name, side files
+  // (buffers, images) included. Its URIs resolve only among these files.
+  std::string gltfFileName;
+  std::map<std::string, std::vector<std::uint8_t>> uploadedFiles;
+  std::string displayName;            // for logs and thumbnail names
+};
+
+struct CameraDesc {
+  // Default (no camera in the request): the asset's first camera if it has one, else Auto.
+  enum class Kind { Default, LookAt, GltfCamera, Auto };
+  Kind kind = Kind::Default;
+  std::array<float, 3> position{0, 1, 4};
+  std::array<float, 3> target{0, 0, 0};
+  std::array<float, 3> up{0, 1, 0};
+  float yfovDegrees = 45.0F;
+  float znear = 0.0F;  // 0: derived from the scene bounds
+  float zfar = 0.0F;   // 0: derived from the scene bounds
+  int gltfCameraIndex = 0;
+  // Auto framing: the scene bounds seen from this direction (camera looks along -viewDirection).
+  std::array<float, 3> viewDirection{1, 0.6F, 1.4F};
+  float margin = 1.1F;  // >1 leaves room around the bounds
+};
+
+enum class ToneMap { None, Reinhard, Aces };
+enum class ImageFormat { Png, ExrHalf, ExrFloat };
+
+struct OutputSettings {
+  int width = 640;
+  int height = 360;
+  ImageFormat format = ImageFormat::Png;
+  ToneMap toneMap = ToneMap::Aces;
+  float exposure = 1.0F;
+  bool transparentBackground = false;
+  std::array<float, 3> background{0.02F, 0.02F, 0.025F};  // linear RGB
+};
+
+enum class InterleaveMode { None, Tiles2x2, Tiles4x4 };
+enum class LightingPath { Auto, Raster, Compute };
+
+// Many-light settings: the LGH built from point lights (VPLs or request lights) and evaluated over
+// the G-buffer. Consumed by the LGH build and the lighting passes.
+struct LghSettings {
+  bool enabled = false;
+  int vplCount = 0;           // random VPLs on the scene's surfaces (seeded); 0: none
+  std::uint32_t seed = 1;
+  float vplIntensity = 1.0F;  // total flux scale of the generated VPLs
+  float alpha = 1.0F;
+  int levels = 0;  // 0: auto (largest L with |S1| < N/2)
+  enum class Method { Gather, Scatter } method = Method::Gather;
+  InterleaveMode interleave = InterleaveMode::None;
+  LightingPath path = LightingPath::Auto;
+  int shadowSamples = 4;  // k, 1..8
+  bool sampleS1 = false;  // include S1 grid lights in shadow sampling
+  bool lockedReservoir = false;
+};
+
+struct RenderSettings {
+  float ambient = 0.03F;  // constant ambient term (linear RGB intensity, grey)
+  LghSettings lgh;
+};
+
+struct RenderRequest {
+  SceneSource scene;
+  std::vector<LightDesc> lights;  // extra lights beside the asset's
+  bool useDemoLightsWhenNone = true;  // an asset with no light gets a default key light
+  CameraDesc camera;
+  OutputSettings output;
+  RenderSettings settings;
+};
+
+// Limits a request is checked against (413/422 when exceeded). The daemon configures them.
+struct RequestLimits {
+  int maxWidth = 8192;
+  int maxHeight = 8192;
+  std::int64_t maxPixels = 8192LL * 8192LL;
+  int maxLights = 4096;
+  int maxVpls = 4 * 1024 * 1024;
+  std::size_t maxInlineGlbBytes = 256U * 1024U * 1024U;
+};
+
+// Validates `json` against proto/render-request.schema.json, then against `limits`, and returns
+// the typed request. Throws lgh::Error (BadRequest/Invalid/TooLarge) naming the JSON path.
+RenderRequest parseRenderRequest(const nlohmann::json& json, const RequestLimits& limits = {});
+
+// Parses text first: malformed JSON is a BadRequest with the byte offset.
+RenderRequest parseRenderRequest(const std::string& text, const RequestLimits& limits = {});
+// A string literal is text (without this overload it would be ambiguous with the JSON one).
+inline RenderRequest parseRenderRequest(const char* text, const RequestLimits& limits = {}) {
+  return parseRenderRequest(std::string(text), limits);
+}
+
+// The schema documents shipped in proto/, by file name (e.g. "render-request.schema.json").
+const std::string& protoDocument(const std::string& fileName);
+
+}  // namespace lgh

@@ -1,0 +1,30 @@
+// The per-pass timing table every render returns: GPU passes from timer queries, CPU steps from
+// a steady clock.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace lgh {
+
+struct TimingRow {
+  std::string name;
+  enum class Clock { Gpu, Cpu } clock = Clock::Gpu;
+  double milliseconds = 0.0;
+};
+
+struct TimingTable {
+  std::vector<TimingRow> rows;
+
+  void add(std::string name, TimingRow::Clock clock, double ms);
+  // Milliseconds of the row with this name; -1 when absent.
+  double get(const std::string& name) const;
+  double gpuTotal() const;
+  // A fixed-width table for terminals.
+  std::string format() const;
+  nlohmann::json toJson() const;
+};
+
+}  // namespace lgh

@@ -1,0 +1,78 @@
+#include "frame_pipeline.hpp"
+
+#include <chrono>
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+namespace lgh {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+LightDesc directionalLight(const glm::vec3& direction, float intensity) {
+  LightDesc light;
+  light.type = LightType::Directional;
+  const glm::vec3 d = glm::normalize(direction);
+  light.direction = {d.x, d.y, d.z};
+  light.intensity = intensity;
+  return light;
+}
+
+}  // namespace
+
+std::vector<LightDesc> frameLights(const RenderRequest& request, const Scene& scene,
+                                   const CameraMatrices& camera,
+                                   std::vector<std::string>& warnings) {
+  std::vector<LightDesc> lights = scene.lights;
+  lights.insert(lights.end(), request.lights.begin(), request.lights.end());
+  if (!lights.empty() || !request.useDemoLightsWhenNone) return lights;
+  // A key light from above the camera's left shoulder and a dimmer fill from the right.
+  const glm::mat4 cameraToWorld = glm::inverse(camera.view);
+  const glm::vec3 right(cameraToWorld[0]);
+  const glm::vec3 up(cameraToWorld[1]);
+  const glm::vec3 forward = -glm::vec3(cameraToWorld[2]);
+  lights.push_back(directionalLight(forward - up * 0.8F + right * 0.5F, 2.5F));
+  lights.push_back(directionalLight(forward + up * 0.2F - right * 0.8F, 0.8F));
+  warnings.emplace_back("the scene has no lights: added a default key and fill light");
+  return lights;
+}
+
+FramePipeline::FramePipeline() = default;
+FramePipeline::~FramePipeline() = default;
+
+void FramePipeline::render(const RenderRequest& request, const CachedScene& cached,
+                           gl::GpuTimer& timer, RenderResult& result, LghFrameProbe* probe) {
+  const OutputSettings& output = request.output;
+  const CameraMatrices camera =
+      computeCamera(request.camera, cached.scene, output.width, output.height);
+  const std::vector<LightDesc> lights = frameLights(request, cached.scene, camera, result.warnings);
+  const LghSettings& lgh = request.settings.lgh;
+  targets_.resize(output.width, output.height);
+  {
+    gl::ScopedGpuPass pass(timer, "gbuffer");
+    gbufferPass_.run(cached.scene, *cached.gpu, camera, targets_);
+  }
+  {
+    gl::ScopedGpuPass pass(timer, "direct lighting");
+    directLightingPass_.run(lights, camera, request.settings.ambient, targets_);
+  }
+  if (lgh.enabled) {
+    if (!lghLighting_) lghLighting_ = std::make_unique<LghFrameLighting>();
+    lghLighting_->run(lgh, cached, camera, targets_, timer, result, probe);
+  }
+  {
+    gl::ScopedGpuPass pass(timer, "composite");
+    compositePass_.run(output, lgh.enabled, targets_);
+  }
+  const auto readbackStart = Clock::now();
+  result.image = readbackFinal(targets_);
+  const double readbackMs =
+      std::chrono::duration<double, std::milli>(Clock::now() - readbackStart).count();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  timer.collect(result.timings);
+  result.timings.add("readback", TimingRow::Clock::Cpu, readbackMs);
+  result.paths["lighting"] = lgh.enabled ? "direct+lgh" : "direct";
+  result.paths["lights"] = std::to_string(lights.size());
+}
+
+}  // namespace lgh

@@ -1,0 +1,43 @@
+// The order of one frame's passes (DESIGN.md, "Data flow of one frame"): G-buffer -> direct
+// lighting -> [VPLs + LGH build + LGH lighting into the indirect target] -> composite ->
+// readback. Owns the passes and the frame targets; the renderer owns the context and the scene
+// cache. The LGH part (passes/lgh_frame_lighting.hpp) is created on the first frame that enables
+// it, so frames without it run exactly as before.
+#pragma once
+
+#include <memory>
+
+#include "gl/gpu_timer.hpp"
+#include "lgh/renderer.hpp"
+#include "passes/composite_pass.hpp"
+#include "passes/direct_lighting_pass.hpp"
+#include "passes/frame_targets.hpp"
+#include "passes/gbuffer_pass.hpp"
+#include "passes/lgh_frame_lighting.hpp"
+#include "scene/scene_cache.hpp"
+
+namespace lgh {
+
+class FramePipeline {
+ public:
+  FramePipeline();
+  ~FramePipeline();
+  // `probe` (tests and the benchmark) asks an LGH frame for its intermediate results.
+  void render(const RenderRequest& request, const CachedScene& scene, gl::GpuTimer& timer,
+              RenderResult& result, LghFrameProbe* probe = nullptr);
+
+ private:
+  FrameTargets targets_;
+  GBufferPass gbufferPass_;
+  DirectLightingPass directLightingPass_;
+  CompositePass compositePass_;
+  std::unique_ptr<LghFrameLighting> lghLighting_;
+};
+
+// The lights a frame uses: the asset's, the request's, and a default key + fill light when both
+// are empty (recorded as a warning).
+std::vector<LightDesc> frameLights(const RenderRequest& request, const Scene& scene,
+                                   const CameraMatrices& camera,
+                                   std::vector<std::string>& warnings);
+
+}  // namespace lgh

@@ -1,0 +1,48 @@
+// Per-pass GPU timing with GL_TIMESTAMP queries (glQueryCounter), so passes may nest: only one
+// GL_TIME_ELAPSED query can be active at a time. Results are read after the frame, once.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "gl/gl_objects.hpp"
+#include "lgh/timing.hpp"
+
+namespace lgh::gl {
+
+class GpuTimer {
+ public:
+  // Returns a token for end().
+  int begin(std::string pass);
+  void end(int token);
+  // Waits for the results and appends one Gpu row per pass, in begin order. Resets the timer.
+  void collect(TimingTable& table);
+  // Drops recorded passes without reading them (after a failed frame).
+  void discard();
+
+ private:
+  GLuint nextQuery();
+  struct Pass {
+    std::string name;
+    GLuint begin = 0;
+    GLuint end = 0;
+  };
+  std::vector<Query> pool_;
+  std::size_t used_ = 0;
+  std::vector<Pass> passes_;
+};
+
+// Brackets a scope: ScopedGpuPass pass(timer, "gbuffer");
+class ScopedGpuPass {
+ public:
+  ScopedGpuPass(GpuTimer& timer, std::string name) : timer_(timer), token_(timer.begin(std::move(name))) {}
+  ~ScopedGpuPass() { timer_.end(token_); }
+  ScopedGpuPass(const ScopedGpuPass&) = delete;
+  ScopedGpuPass& operator=(const ScopedGpuPass&) = delete;
+
+ private:
+  GpuTimer& timer_;
+  int token_;
+};
+
+}  // namespace lgh::gl

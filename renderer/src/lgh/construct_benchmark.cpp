@@ -1,0 +1,226 @@
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <map>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "context/gl_context.hpp"
+#include "gl/gpu_timer.hpp"
+#include "lgh/error.hpp"
+#include "lgh/lgh_benchmark.hpp"
+#include "lgh/lgh_builder.hpp"
+#include "lgh/vpl_sampler.hpp"
+#include "scene/demo_scene.hpp"
+
+namespace lgh {
+namespace {
+
+constexpr const char* kTotalPass = "lgh build";
+
+struct Samples {
+  std::vector<std::string> order;  // step names in first-seen order
+  std::map<std::string, std::vector<double>> values;
+  void add(const std::string& name, double ms) {
+    if (!values.contains(name)) order.push_back(name);
+    values[name].push_back(ms);
+  }
+};
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t mid = values.size() / 2;
+  return values.size() % 2 == 1 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
+}
+
+double msSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+LghAtomics parseAtomics(const std::string& name) {
+  if (name == "auto") return LghAtomics::Auto;
+  if (name == "float") return LghAtomics::Float;
+  if (name == "fixed") return LghAtomics::FixedPoint;
+  throw Error(ErrorCode::BadRequest, "atomics must be auto, float or fixed, not '" + name + "'",
+              "atomics");
+}
+
+const char* methodName(LghSettings::Method method) {
+  return method == LghSettings::Method::Gather ? "gather" : "scatter";
+}
+
+// 30-bit Morton code of p in the box [lo, hi].
+std::uint32_t mortonCode(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi) {
+  const glm::vec3 t = glm::clamp((p - lo) / glm::max(hi - lo, glm::vec3(1e-20F)), 0.0F, 1.0F);
+  std::uint32_t code = 0;
+  for (int bit = 9; bit >= 0; --bit) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const auto q = static_cast<std::uint32_t>(t[axis] * 1023.0F);
+      code = (code << 1) | ((q >> bit) & 1U);
+    }
+  }
+  return code;
+}
+
+void sortAlongZOrder(std::vector<PointLight>& lights) {
+  glm::vec3 lo(3e38F);
+  glm::vec3 hi(-3e38F);
+  for (const PointLight& light : lights) {
+    lo = glm::min(lo, glm::vec3(light.positionPad));
+    hi = glm::max(hi, glm::vec3(light.positionPad));
+  }
+  std::vector<std::pair<std::uint32_t, std::size_t>> keys;
+  keys.reserve(lights.size());
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    keys.emplace_back(mortonCode(glm::vec3(lights[i].positionPad), lo, hi), i);
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<PointLight> sorted;
+  sorted.reserve(lights.size());
+  for (const auto& key : keys) sorted.push_back(lights[key.second]);
+  lights.swap(sorted);
+}
+
+void checkOptions(const ConstructBenchmarkOptions& options) {
+  if (options.vplOrder != "random" && options.vplOrder != "morton") {
+    throw Error(ErrorCode::BadRequest, "VPL order must be random or morton", "vpl_order");
+  }
+  if (options.vplCounts.empty() || options.methods.empty()) {
+    throw Error(ErrorCode::BadRequest, "give at least one VPL count and one method");
+  }
+  for (int count : options.vplCounts) {
+    if (count <= 0)
+      throw Error(ErrorCode::BadRequest, fmt::format("VPL count {} must be > 0", count), "vpls");
+  }
+  if (options.timedIterations <= 0 || options.warmupIterations < 0) {
+    throw Error(ErrorCode::BadRequest, "iterations must be > 0 and warm-up >= 0", "iterations");
+  }
+  if (options.levels < 0 || options.levels > kLghMaxLevels) {
+    throw Error(ErrorCode::BadRequest, fmt::format("levels must be 0 (auto) .. {}", kLghMaxLevels),
+                "levels");
+  }
+}
+
+// A "lgh S<l>" row for a level the build did not have (auto levels: the CPU issues dispatches for
+// every possible level, the ones past L are empty).
+bool beyondTop(const std::string& step, int levelCount) {
+  int level = 0;
+  return std::sscanf(step.c_str(), "lgh S%d", &level) == 1 &&
+         step.find_first_of(" +", 5) == std::string::npos && level > levelCount;
+}
+
+nlohmann::json timedRun(LghBuilder& builder, GLuint lights, int count,
+                        const LghBuildSettings& settings,
+                        const ConstructBenchmarkOptions& options) {
+  for (int i = 0; i < options.warmupIterations; ++i) builder.build(lights, count, settings);
+  glFinish();
+  Samples samples;
+  for (int i = 0; i < options.timedIterations; ++i) {
+    gl::GpuTimer timer;
+    {
+      gl::ScopedGpuPass total(timer, kTotalPass);
+      builder.build(lights, count, settings, &timer);
+    }
+    TimingTable table;
+    timer.collect(table);
+    for (const TimingRow& row : table.rows) samples.add(row.name, row.milliseconds);
+  }
+  // The same builds timed as a whole only: per-step timestamp queries cost a few us each.
+  std::vector<double> totals;
+  for (int i = 0; i < options.timedIterations; ++i) {
+    gl::GpuTimer timer;
+    {
+      gl::ScopedGpuPass total(timer, kTotalPass);
+      builder.build(lights, count, settings);
+    }
+    TimingTable table;
+    timer.collect(table);
+    totals.push_back(table.get(kTotalPass));
+  }
+  const auto readStart = std::chrono::steady_clock::now();
+  const LghLevelTable levels = builder.readLevels();
+  const double readbackMs = msSince(readStart);
+
+  nlohmann::json steps = nlohmann::json::array();
+  for (const std::string& name : samples.order) {
+    if (name == kTotalPass || beyondTop(name, levels.levelCount)) continue;
+    const auto& values = samples.values[name];
+    steps.push_back({{"name", name},
+                     {"median_ms", median(values)},
+                     {"min_ms", *std::min_element(values.begin(), values.end())},
+                     {"max_ms", *std::max_element(values.begin(), values.end())}});
+  }
+  nlohmann::json counts = nlohmann::json::array();
+  for (const LghLevelInfo& level : levels.levels) counts.push_back(level.count);
+  return {{"levels", levels.levelCount},
+          {"fit_levels", levels.fitLevels},
+          {"atomics", levels.fixedPoint ? "fixed-point" : "float"},
+          {"contributing_lights", levels.contributingCount},
+          {"level_counts", counts},
+          {"candidate_s1", levels.candidateS1},
+          {"grid_lights", levels.totalLights},
+          {"overflow", levels.overflow},
+          {"steps", steps},
+          {"total_ms", median(samples.values[kTotalPass])},
+          {"total_without_step_timers_ms", median(totals)},
+          {"readback_ms", readbackMs},
+          {"gpu_bytes", builder.allocatedBytes()}};
+}
+
+}  // namespace
+
+nlohmann::json runConstructBenchmark(const ConstructBenchmarkOptions& options) {
+  checkOptions(options);
+  const LghAtomics atomics = parseAtomics(options.atomics);
+  std::unique_ptr<GlContext> context = GlContext::create(options.renderer);
+  const Scene scene = makeDemoScene();
+  LghBuilder builder;
+  gl::SizedBuffer lightBuffer;
+  nlohmann::json runs = nlohmann::json::array();
+  for (int count : options.vplCounts) {
+    const auto sampleStart = std::chrono::steady_clock::now();
+    std::vector<PointLight> vpls =
+        sampleSurfaceVpls(scene, {count, options.seed, options.totalFlux});
+    const double sampleMs = msSince(sampleStart);
+    if (options.vplOrder == "morton") sortAlongZOrder(vpls);
+    uploadPointLights(vpls, lightBuffer);
+    for (LghSettings::Method method : options.methods) {
+      LghBuildSettings settings;
+      settings.levels = options.levels;
+      settings.method = method;
+      settings.atomics = atomics;
+      settings.splitLevels = options.perLevelTimings;
+      nlohmann::json run = timedRun(builder, lightBuffer.id(), count, settings, options);
+      run["vpls"] = count;
+      run["method"] = methodName(method);
+      run["vpl_sampling_cpu_ms"] = sampleMs;
+      if (options.progress) {
+        options.progress(
+            fmt::format("lgh construct: {} VPLs, {}: {} levels, {} grid lights, {:.3f} ms", count,
+                        methodName(method), run["levels"].get<int>(),
+                        run["grid_lights"].get<std::uint32_t>(), run["total_ms"].get<double>()));
+      }
+      runs.push_back(std::move(run));
+    }
+  }
+  nlohmann::json methods = nlohmann::json::array();
+  for (LghSettings::Method method : options.methods) methods.push_back(methodName(method));
+  return {
+      {"benchmark", "lgh-construct"},
+      {"device", context->info().toJson()},
+      {"settings",
+       {{"levels", options.levels == 0 ? nlohmann::json("auto") : nlohmann::json(options.levels)},
+        {"methods", methods},
+        {"warmup_iterations", options.warmupIterations},
+        {"timed_iterations", options.timedIterations},
+        {"per_level_timings", options.perLevelTimings},
+        {"atomics", options.atomics},
+        {"seed", options.seed},
+        {"scene", "demo"}}},
+      {"runs", runs}};
+}
+
+}  // namespace lgh

@@ -1,0 +1,187 @@
+#include "passes/lgh_frame_lighting.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "lgh/vpl_sampler.hpp"
+
+namespace lgh {
+namespace {
+
+constexpr const char* kProbePass = "lgh path probe";
+
+bool softwareRasterizer() {
+  const auto* text = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  std::string renderer = text != nullptr ? text : "";
+  std::transform(renderer.begin(), renderer.end(), renderer.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  for (const char* name : {"llvmpipe", "softpipe", "swrast", "lavapipe", "swiftshader"}) {
+    if (renderer.find(name) != std::string::npos) return true;
+  }
+  return false;
+}
+
+// The level table through a staging copy (see readShadowSamples).
+LghLevelTable readLevelTable(GLuint levels) {
+  gl::Buffer staging;
+  glNamedBufferStorage(staging.id(), sizeof(LghLevelTableGpu), nullptr, GL_MAP_READ_BIT);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glCopyNamedBufferSubData(levels, staging.id(), 0, 0, sizeof(LghLevelTableGpu));
+  LghLevelTableGpu table;
+  glGetNamedBufferSubData(staging.id(), 0, sizeof(table), &table);
+  return LghLevelTable::fromGpu(table);
+}
+
+void clearIndirect(FrameTargets& frame) {
+  const float zero[4] = {0.0F, 0.0F, 0.0F, 0.0F};
+  glClearTexImage(frame.indirect.id(), 0, GL_RGBA, GL_FLOAT, zero);
+}
+
+}  // namespace
+
+LghFrameLighting::LghFrameLighting() = default;
+LghFrameLighting::~LghFrameLighting() = default;
+
+float LghFrameLighting::vplTotalIntensity(const Scene& scene, float vplIntensity) {
+  if (scene.bounds.empty()) return vplIntensity;
+  const float radius = 0.5F * glm::length(scene.bounds.size());
+  return vplIntensity * std::max(radius * radius, 1e-12F);
+}
+
+void LghFrameLighting::uploadVpls(const LghSettings& settings, const CachedScene& cached) {
+  const VplKey key{
+      &cached,           cached.scene.name, cached.scene.triangleCount(),
+      settings.vplCount, settings.seed,     vplTotalIntensity(cached.scene, settings.vplIntensity)};
+  if (vplKey_ == key) return;
+  const std::vector<PointLight> vpls =
+      sampleSurfaceVpls(cached.scene, {settings.vplCount, settings.seed, key.flux});
+  uploadPointLights(vpls, vplBuffer_);
+  vplKey_ = key;
+}
+
+void LghFrameLighting::run(const LghSettings& settings, const CachedScene& cached,
+                           const CameraMatrices& camera, FrameTargets& frame, gl::GpuTimer& timer,
+                           RenderResult& result, LghFrameProbe* probe) {
+  result.paths["vpls"] = std::to_string(settings.vplCount);
+  result.paths["interleave"] = interleaveName(settings.interleave);
+  if (settings.vplCount <= 0) {
+    clearIndirect(frame);
+    result.paths["lgh_lighting"] = "none";
+    result.warnings.emplace_back("LGH lighting enabled with vpl_count 0: no indirect light");
+    return;
+  }
+  uploadVpls(settings, cached);
+  {
+    gl::ScopedGpuPass pass(timer, "lgh build");
+    builder_.build(vplBuffer_.id(), settings.vplCount, LghBuildSettings::fromRequest(settings),
+                   &timer);
+  }
+  LghLightingParams params = LghLightingParams::fromSettings(settings);
+  params.overdraw = probe != nullptr && probe->overdraw;
+  targets_.resize(frame.width, frame.height, params.interleave, params.samples);
+  const LightingPath path = choosePath(settings.path, params, camera, frame, result);
+  light(path, params, camera, frame, timer);
+  result.paths["lgh_lighting"] = lightingPathName(path);
+  result.paths["lgh_shadow_samples"] = std::to_string(params.samples);
+  if (path == LightingPath::Raster && params.locked) {
+    const bool interlock = raster_.lockMode(true) == LghRasterLightingPass::LockMode::Interlock;
+    result.paths["lgh_reservoir_lock"] = interlock ? "interlock" : "spin";
+  } else {
+    result.paths["lgh_reservoir_lock"] = path == LightingPath::Compute ? "owned" : "none";
+  }
+  if (probe != nullptr) {
+    probe->path = path;
+    readProbe(settings, camera, frame, timer, *probe);
+    if (probe->bruteForce) result.paths["reference"] = "brute-force";
+  }
+}
+
+LightingPath LghFrameLighting::choosePath(LightingPath requested, const LghLightingParams& params,
+                                          const CameraMatrices& camera, FrameTargets& frame,
+                                          RenderResult& result) {
+  if (requested != LightingPath::Auto) {
+    result.paths["lgh_lighting_choice"] = "configured";
+    return requested;
+  }
+  if (softwareRasterizer()) {
+    result.paths["lgh_lighting_choice"] = "rule";  // no meaningful GPU timers on llvmpipe
+    return LightingPath::Compute;
+  }
+  if (!measuredPath_) {
+    measuredPath_ = measureFasterPath(params, camera, frame);
+    spdlog::info("LGH lighting: the {} path measured faster on this device",
+                 lightingPathName(*measuredPath_));
+  }
+  result.paths["lgh_lighting_choice"] = "measured";
+  return *measuredPath_;
+}
+
+// Times both paths on this frame (after a warm-up run each, which also compiles the programs).
+LightingPath LghFrameLighting::measureFasterPath(const LghLightingParams& params,
+                                                 const CameraMatrices& camera,
+                                                 FrameTargets& frame) {
+  auto timeOnce = [&](LightingPath path) {
+    gl::GpuTimer probeTimer;
+    gl::GpuTimer lightingTimer;
+    {
+      gl::ScopedGpuPass pass(probeTimer, kProbePass);
+      light(path, params, camera, frame, lightingTimer);
+    }
+    TimingTable table;
+    probeTimer.collect(table);
+    lightingTimer.discard();
+    return table.get(kProbePass);
+  };
+  double best[2] = {0.0, 0.0};
+  const LightingPath paths[2] = {LightingPath::Raster, LightingPath::Compute};
+  for (int i = 0; i < 2; ++i) {
+    timeOnce(paths[i]);
+    best[i] = std::min(timeOnce(paths[i]), timeOnce(paths[i]));
+  }
+  spdlog::debug("LGH path probe: raster {:.3f} ms, compute {:.3f} ms", best[0], best[1]);
+  return best[0] < best[1] ? LightingPath::Raster : LightingPath::Compute;
+}
+
+void LghFrameLighting::light(LightingPath path, const LghLightingParams& params,
+                             const CameraMatrices& camera, FrameTargets& frame,
+                             gl::GpuTimer& timer) {
+  const LghHierarchyBuffers hierarchy{builder_.gridLights(), builder_.levels()};
+  const bool interleaved = params.interleave > 1;
+  if (path == LightingPath::Raster) {
+    if (interleaved) {
+      gl::ScopedGpuPass pass(timer, "lgh interleave split");
+      interleave_.split(params, camera, frame, targets_);
+    }
+    gl::ScopedGpuPass pass(timer, "lgh lighting");
+    raster_.run(hierarchy, params, camera, frame, targets_);
+  } else {
+    gl::ScopedGpuPass pass(timer, "lgh lighting");
+    compute_.run(hierarchy, params, camera, frame, targets_);
+  }
+  if (interleaved) {
+    gl::ScopedGpuPass pass(timer, "lgh interleave composite");
+    interleave_.composite(params, camera, frame, targets_);
+  }
+}
+
+void LghFrameLighting::readProbe(const LghSettings& settings, const CameraMatrices& camera,
+                                 FrameTargets& frame, gl::GpuTimer& timer, LghFrameProbe& probe) {
+  if (probe.bruteForce) {
+    gl::ScopedGpuPass pass(timer, "lgh reference");
+    bruteForce_.run(vplBuffer_.id(), settings.vplCount, builder_.levels(), camera, frame);
+  }
+  if (!probe.readBack) return;
+  probe.indirect = readTextureImage(frame.indirect, frame.width, frame.height);
+  if (probe.bruteForce) probe.reference = bruteForce_.read();
+  probe.reservoirSums = readReservoirSums(targets_);
+  probe.shadowSamples = readShadowSamples(targets_);
+  probe.shadowSampleCount = targets_.samples;
+  if (probe.overdraw) probe.overdrawCounts = readOverdraw(targets_);
+  probe.levels = readLevelTable(builder_.levels());
+}
+
+}  // namespace lgh

@@ -1,0 +1,61 @@
+// glTF 2.0 (.gltf + side files, or .glb) -> Scene, through tinygltf, hardened for untrusted input:
+//
+//  - The JSON is checked against the parts of the glTF schema we consume before tinygltf sees it
+//    (tinygltf silently ignores wrongly typed members); a type error is lgh::Error(Invalid) naming
+//    the JSON pointer, e.g. "/meshes/0/primitives must be an array".
+//  - Every external URI (percent-decoded by tinygltf) is resolved through the asset sandbox
+//    (resolveAssetPath: no "..", no absolute paths, no symlink leaving the root). data: URIs are
+//    fine; an inline .glb may reference no external file at all.
+//  - Every accessor is bounds-checked by hand before it is read; indices are checked against the
+//    vertex count; positions must be finite.
+//
+// What becomes an error and what is repaired (with a line in Scene::warnings):
+//  - errors (lgh::Error): malformed JSON/GLB or schema type errors (Invalid, tinygltf's text),
+//    missing buffer or used image file (NotFound), sandbox violations (Invalid for a URI inside
+//    the asset, BadRequest for the asset path itself, as resolveAssetPath throws), unsupported
+//    REQUIRED extensions (Invalid, naming them), wrong accessor type/componentType for an
+//    attribute, accessor or bufferView out of bounds, index >= vertex count, non-finite POSITION,
+//    node cycles or hierarchies deeper than 64, limits exceeded (TooLarge), an image used by a
+//    material that cannot be decoded (Invalid, naming it), no triangle geometry (Invalid).
+//  - repairs: points/lines primitives skipped; a trailing partial triangle dropped; missing
+//    normals -> flat normals (glTF's rule); zero/NaN normals -> area-weighted smooth normals;
+//    missing or broken tangents -> generated (see tangents.hpp); non-finite UVs/colours -> 0/1;
+//    unsupported optional extensions, skins and morph targets ignored (bind pose, base mesh);
+//    an image no material uses that fails to load is dropped.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "scene/scene.hpp"
+
+namespace lgh {
+
+struct SceneLoadLimits {
+  std::size_t maxTriangles = 20'000'000;  // drawn triangles (instances count)
+  int maxTextureSize = 16384;             // largest width or height of a texture image
+  std::size_t maxFileBytes = 1ULL << 30;  // per file: the asset and each side file
+};
+
+// Loads a .gltf (with its external files) or .glb. Paths inside the asset (buffer and image URIs)
+// must resolve inside assetRoot. The format is told by the content (GLB magic), not the name.
+Scene loadGltfFile(const std::filesystem::path& assetRoot, const std::string& relativePath,
+                   const SceneLoadLimits& limits = {});
+
+// A .glb held in memory (a request's inline asset). It may use embedded buffers and data: URIs
+// only.
+Scene loadGlbBytes(const std::vector<std::uint8_t>& bytes, const std::string& displayName,
+                   const SceneLoadLimits& limits = {});
+
+// Uploaded .gltf (or .glb) with its side files held in memory (name -> bytes, names relative to
+// the upload, "/"-separated), for the daemon's multipart uploads. URIs are resolved relative to
+// gltfName's folder, with the same rules as on disk.
+Scene loadGltfFromMemory(const std::string& gltfName,
+                         const std::map<std::string, std::vector<std::uint8_t>>& files,
+                         const SceneLoadLimits& limits = {});
+
+}  // namespace lgh

@@ -1,0 +1,128 @@
+#include "scene/scene_cache.hpp"
+
+#include <chrono>
+#include <filesystem>
+
+#include <epoxy/gl.h>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "scene/asset_path.hpp"
+#include "scene/demo_scene.hpp"
+#include "scene/gltf_loader.hpp"
+
+namespace lgh {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+std::uint64_t fnv1a(const std::vector<std::uint8_t>& bytes) {
+  std::uint64_t hash = 1469598103934665603ULL;
+  for (std::uint8_t byte : bytes) {
+    hash ^= byte;
+    hash *= 1099511628211ULL;
+  }
+  return hash;
+}
+
+}  // namespace
+
+SceneCache::SceneCache(const RendererOptions& options) : options_(options) {
+  GLfloat anisotropy = 1.0F;
+  glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &anisotropy);
+  maxAnisotropy_ = anisotropy;
+}
+
+std::string SceneCache::keyFor(const SceneSource& source) const {
+  switch (source.kind) {
+    case SceneSource::Kind::Demo: return "demo";
+    case SceneSource::Kind::InlineGlb:
+      return fmt::format("glb:{:016x}:{}", fnv1a(source.glbBytes), source.glbBytes.size());
+    case SceneSource::Kind::UploadedGltf: {
+      std::string key = "upload:" + source.gltfFileName;
+      for (const auto& [name, bytes] : source.uploadedFiles) {
+        key += fmt::format(":{}={:016x}", name, fnv1a(bytes));
+      }
+      return key;
+    }
+    case SceneSource::Kind::AssetPath: {
+      auto path = resolveAssetPath(options_.assetRoot, source.assetPath, "/scene/asset");
+      std::error_code error;
+      auto size = std::filesystem::file_size(path, error);
+      auto mtime = std::filesystem::last_write_time(path, error).time_since_epoch().count();
+      // A .gltf's side files may change without the .gltf changing: key by the folder's newest
+      // mtime too, cheaply, by the .gltf's own folder.
+      auto folderTime =
+          std::filesystem::last_write_time(path.parent_path(), error).time_since_epoch().count();
+      return fmt::format("file:{}:{}:{}:{}", path.string(), size, mtime, folderTime);
+    }
+  }
+  return {};
+}
+
+Scene SceneCache::load(const SceneSource& source) const {
+  SceneLoadLimits limits;
+  limits.maxTriangles = options_.maxTriangles;
+  limits.maxTextureSize = options_.maxTextureSize;
+  switch (source.kind) {
+    case SceneSource::Kind::Demo: return makeDemoScene();
+    case SceneSource::Kind::InlineGlb:
+      return loadGlbBytes(source.glbBytes,
+                          source.displayName.empty() ? "inline.glb" : source.displayName, limits);
+    case SceneSource::Kind::UploadedGltf:
+      return loadGltfFromMemory(source.gltfFileName, source.uploadedFiles, limits);
+    case SceneSource::Kind::AssetPath:
+      return loadGltfFile(options_.assetRoot, source.assetPath, limits);
+  }
+  return makeDemoScene();
+}
+
+SceneCache::Lookup SceneCache::get(const SceneSource& source) {
+  Lookup lookup;
+  const std::string key = keyFor(source);
+  for (auto it = slots_.begin(); it != slots_.end(); ++it) {
+    if (it->key != key) continue;
+    slots_.splice(slots_.begin(), slots_, it);
+    ++hits_;
+    lookup.entry = slots_.front().entry;
+    lookup.hit = true;
+    return lookup;
+  }
+  ++misses_;
+  auto loadStart = Clock::now();
+  auto entry = std::make_shared<CachedScene>();
+  entry->scene = load(source);
+  lookup.loadMs = millisecondsSince(loadStart);
+  auto uploadStart = Clock::now();
+  entry->gpu = std::make_unique<GpuScene>(entry->scene, maxAnisotropy_);
+  lookup.uploadMs = millisecondsSince(uploadStart);
+  lookup.entry = entry;
+  slots_.push_front({key, entry, entry->gpu->gpuBytes()});
+  evictOverBudget();
+  return lookup;
+}
+
+void SceneCache::evictOverBudget() {
+  std::size_t total = 0;
+  for (const Slot& slot : slots_) total += slot.bytes;
+  while (slots_.size() > 1 && total > options_.sceneCacheBytes) {
+    spdlog::info("scene cache: evicting {} ({} bytes)", slots_.back().key, slots_.back().bytes);
+    total -= slots_.back().bytes;
+    slots_.pop_back();
+  }
+}
+
+Renderer::CacheStats SceneCache::stats() const {
+  Renderer::CacheStats stats;
+  stats.hits = hits_;
+  stats.misses = misses_;
+  stats.entries = slots_.size();
+  for (const Slot& slot : slots_) stats.bytes += slot.bytes;
+  return stats;
+}
+
+}  // namespace lgh

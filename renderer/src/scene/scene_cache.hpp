@@ -1,0 +1,55 @@
+// LRU cache of loaded scenes (CPU data + GPU upload) keyed by content: "demo", an asset's resolved
+// path + size + mtime, or a hash of inline GLB bytes. Bounded by a GPU memory budget; the most
+// recently used scene is always kept, even when it alone exceeds the budget.
+#pragma once
+
+#include <cstdint>
+#include <list>
+#include <memory>
+#include <string>
+
+#include "lgh/renderer.hpp"
+#include "scene/gpu_scene.hpp"
+#include "scene/scene.hpp"
+
+namespace lgh {
+
+struct CachedScene {
+  Scene scene;
+  std::unique_ptr<GpuScene> gpu;
+};
+
+class SceneCache {
+ public:
+  explicit SceneCache(const RendererOptions& options);
+
+  struct Lookup {
+    std::shared_ptr<CachedScene> entry;
+    bool hit = false;
+    double loadMs = 0.0;
+    double uploadMs = 0.0;
+  };
+  // Loads on a miss; throws lgh::Error for bad assets (nothing is cached then).
+  Lookup get(const SceneSource& source);
+  Renderer::CacheStats stats() const;
+
+  // Content key of a source ("" when it cannot be keyed; then it is never cached).
+  std::string keyFor(const SceneSource& source) const;
+
+ private:
+  Scene load(const SceneSource& source) const;
+  void evictOverBudget();
+
+  RendererOptions options_;
+  float maxAnisotropy_ = 1.0F;
+  struct Slot {
+    std::string key;
+    std::shared_ptr<CachedScene> entry;
+    std::size_t bytes = 0;
+  };
+  std::list<Slot> slots_;  // front: most recently used
+  std::uint64_t hits_ = 0;
+  std::uint64_t misses_ = 0;
+};
+
+}  // namespace lgh

@@ -1,0 +1,69 @@
+#include <algorithm>
+#include <string_view>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "lgh/timing.hpp"
+
+namespace lgh {
+namespace {
+
+const char* clockName(TimingRow::Clock clock) {
+  return clock == TimingRow::Clock::Gpu ? "gpu" : "cpu";
+}
+
+}  // namespace
+
+void TimingTable::add(std::string name, TimingRow::Clock clock, double ms) {
+  rows.push_back({std::move(name), clock, ms});
+}
+
+double TimingTable::get(const std::string& name) const {
+  const auto it = std::find_if(rows.begin(), rows.end(),
+                               [&](const TimingRow& row) { return row.name == name; });
+  return it == rows.end() ? -1.0 : it->milliseconds;
+}
+
+double TimingTable::gpuTotal() const {
+  double total = 0.0;
+  for (const TimingRow& row : rows) {
+    if (row.clock == TimingRow::Clock::Gpu) total += row.milliseconds;
+  }
+  return total;
+}
+
+// pass      clock        ms
+// gbuffer   gpu       1.234
+// ...
+// total gpu           5.678
+// GPU and CPU times overlap (the CPU waits on the GPU), so only the GPU rows are summed: a sum
+// over both clocks would count the same milliseconds twice.
+std::string TimingTable::format() const {
+  constexpr std::string_view kTotalLabel = "total gpu";
+  std::size_t nameWidth = std::string_view("pass").size();
+  for (const TimingRow& row : rows) nameWidth = std::max(nameWidth, row.name.size());
+  nameWidth = std::max(nameWidth, kTotalLabel.size());
+
+  constexpr int kMsWidth = 10;
+  std::string text =
+      fmt::format("{:<{}}  {:<5}  {:>{}}\n", "pass", nameWidth, "clock", "ms", kMsWidth);
+  for (const TimingRow& row : rows) {
+    text += fmt::format("{:<{}}  {:<5}  {:>{}.3f}\n", row.name, nameWidth, clockName(row.clock),
+                        row.milliseconds, kMsWidth);
+  }
+  text +=
+      fmt::format("{:<{}}  {:<5}  {:>{}.3f}\n", kTotalLabel, nameWidth, "", gpuTotal(), kMsWidth);
+  return text;
+}
+
+nlohmann::json TimingTable::toJson() const {
+  nlohmann::json array = nlohmann::json::array();
+  for (const TimingRow& row : rows) {
+    array.push_back(
+        {{"pass", row.name}, {"clock", clockName(row.clock)}, {"ms", row.milliseconds}});
+  }
+  return array;
+}
+
+}  // namespace lgh

@@ -1,0 +1,189 @@
+// `lgh-bench render`: full LGH frames of the demo scene for a list of VPL counts, both lighting
+// paths, each interleaving and shadow-sample count (the paper's Tables 2 and 3, Fig. 5), with the
+// relative RMSE / PSNR of every run against the brute-force image. Prints one row per run (median
+// GPU milliseconds); with --json the JSON document goes to stdout and the table to stderr.
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "bench/bench_command.hpp"
+#include "lgh/error.hpp"
+#include "lgh/lgh_render_benchmark.hpp"
+
+namespace lgh::bench {
+namespace {
+
+struct RenderFlags {
+  std::vector<int> vpls{1000, 10000, 100000, 1000000};
+  int width = 1280;
+  int height = 720;
+  std::vector<std::string> paths{"raster", "compute"};
+  std::vector<std::string> interleaves{"none", "2x2", "4x4"};
+  std::vector<int> samples{1, 4};
+  float alpha = 1.0F;
+  std::string locks = "paper";
+  int iterations = 10;
+  int warmup = 2;
+  bool noReference = false;
+  bool noOverdraw = false;
+  bool json = false;
+  std::uint32_t seed = 1;
+  float intensity = 1.0F;
+};
+
+std::string countLabel(int count) {
+  if (count >= 1000000 && count % 1000000 == 0) return fmt::format("{}M", count / 1000000);
+  if (count >= 1000 && count % 1000 == 0) return fmt::format("{}K", count / 1000);
+  return std::to_string(count);
+}
+
+double passMedian(const nlohmann::json& run, const std::string& name) {
+  for (const auto& pass : run["passes"]) {
+    if (pass["name"] == name) return pass["median_ms"].get<double>();
+  }
+  return 0.0;
+}
+
+std::string formatTable(const nlohmann::json& result) {
+  const auto& settings = result["settings"];
+  std::string out =
+      fmt::format("LGH rendering on {} ({}), {}x{}, alpha {}, median of {} frames [GPU ms]\n",
+                  result["device"].value("gl_renderer", std::string("?")),
+                  result["device"].value("context_path", std::string("?")),
+                  settings["width"].get<int>(), settings["height"].get<int>(),
+                  settings["alpha"].get<float>(), settings["timed_iterations"].get<int>());
+  out += fmt::format(
+      "{:>6} {:>8} {:>6} {:>2} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>7} {:>9} {:>6}\n",
+      "VPLs", "path", "inter.", "k", "locked", "gbuffer", "build", "split", "light", "compos.",
+      "lighting", "render", "relRMSE", "PSNR dB", "overdr");
+  for (const auto& run : result["runs"]) {
+    const std::string rmse = run.contains("relative_rmse")
+                                 ? fmt::format("{:.4f}", run["relative_rmse"].get<double>())
+                                 : "-";
+    std::string psnr = "-";
+    if (run.contains("psnr")) {
+      psnr = run["psnr"].is_number() ? fmt::format("{:.2f}", run["psnr"].get<double>()) : "inf";
+    }
+    const std::string overdraw = run.contains("overdraw") && run["overdraw"].contains("mean")
+                                     ? fmt::format("{:.1f}", run["overdraw"]["mean"].get<double>())
+                                     : "-";
+    out += fmt::format(
+        "{:>6} {:>8} {:>6} {:>2} {:>6} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f} "
+        "{:>9.3f} "
+        "{:>7} {:>9} {:>6}\n",
+        countLabel(run["vpls"].get<int>()), run["path"].get<std::string>(),
+        run["interleave"].get<std::string>(), run["shadow_samples"].get<int>(),
+        run["locked"].get<bool>() ? "yes" : "no", passMedian(run, "gbuffer"),
+        run["build_ms"].get<double>(), passMedian(run, "lgh interleave split"),
+        passMedian(run, "lgh lighting"), passMedian(run, "lgh interleave composite"),
+        run["lighting_ms"].get<double>(), run["render_ms"].get<double>(), rmse, psnr, overdraw);
+  }
+  for (const auto& reference : result["references"]) {
+    out += fmt::format("brute-force reference, {} VPLs: {:.3f} ms\n",
+                       countLabel(reference["vpls"].get<int>()),
+                       reference["bruteforce_ms"].get<double>());
+  }
+  return out;
+}
+
+std::vector<LightingPath> parsePaths(const std::vector<std::string>& names) {
+  std::vector<LightingPath> paths;
+  for (const auto& name : names)
+    paths.push_back(name == "raster" ? LightingPath::Raster : LightingPath::Compute);
+  return paths;
+}
+
+std::vector<InterleaveMode> parseInterleaves(const std::vector<std::string>& names) {
+  std::vector<InterleaveMode> modes;
+  for (const auto& name : names) {
+    if (name == "none") modes.push_back(InterleaveMode::None);
+    if (name == "2x2") modes.push_back(InterleaveMode::Tiles2x2);
+    if (name == "4x4") modes.push_back(InterleaveMode::Tiles4x4);
+  }
+  return modes;
+}
+
+int runRender(const RenderFlags& flags, const cli::ContextFlags& context) {
+  RenderBenchmarkOptions options;
+  options.vplCounts = flags.vpls;
+  options.width = flags.width;
+  options.height = flags.height;
+  options.paths = parsePaths(flags.paths);
+  options.interleaves = parseInterleaves(flags.interleaves);
+  options.shadowSamples = flags.samples;
+  options.alpha = flags.alpha;
+  options.locks = flags.locks;
+  options.warmupIterations = flags.warmup;
+  options.timedIterations = flags.iterations;
+  options.reference = !flags.noReference;
+  options.overdraw = !flags.noOverdraw;
+  options.renderer = cli::rendererOptions(context);
+  options.seed = flags.seed;
+  options.vplIntensity = flags.intensity;
+  options.progress = [](const std::string& line) { std::cerr << line << '\n'; };
+  const nlohmann::json result = runRenderBenchmark(options);
+  const std::string table = formatTable(result);
+  if (flags.json) {
+    std::cerr << table;
+    std::cout << result.dump(2) << '\n';
+  } else {
+    std::cout << table;
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command addRenderCommand(CLI::App& app, const cli::ContextFlags& context) {
+  auto flags = std::make_shared<RenderFlags>();
+  CLI::App* sub = app.add_subcommand(
+      "render", "time LGH lighting (raster and compute paths) on the demo scene with VPLs");
+  sub->fallthrough();
+  sub->add_option("--vpls", flags->vpls, "VPL counts, comma separated")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--width", flags->width, "frame width")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--height", flags->height, "frame height")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--paths", flags->paths, "lighting paths: raster, compute")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"raster", "compute"}))
+      ->capture_default_str();
+  sub->add_option("--interleave", flags->interleaves, "interleaving: none, 2x2, 4x4")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"none", "2x2", "4x4"}))
+      ->capture_default_str();
+  sub->add_option("--samples", flags->samples, "shadow samples per pixel (1..8), comma separated")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 8))
+      ->capture_default_str();
+  sub->add_option("--alpha", flags->alpha, "hierarchy blending parameter alpha")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--locks", flags->locks,
+                  "raster reservoir locks: paper (4x4 only, Table 3), none, all")
+      ->check(CLI::IsMember({"paper", "none", "all"}))
+      ->capture_default_str();
+  sub->add_option("--iterations", flags->iterations, "timed frames per run")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--warmup", flags->warmup, "untimed frames first")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sub->add_flag("--no-reference", flags->noReference, "skip the brute-force image and the RMSE");
+  sub->add_flag("--no-overdraw", flags->noOverdraw, "skip the overdraw statistics");
+  sub->add_flag("--json", flags->json, "JSON on stdout (the table goes to stderr)");
+  sub->add_option("--seed", flags->seed, "VPL sampling and reservoir seed")->capture_default_str();
+  sub->add_option("--intensity", flags->intensity, "VPL intensity scale")->capture_default_str();
+  return Command{sub, [flags, &context] { return runRender(*flags, context); }};
+}
+
+}  // namespace lgh::bench

@@ -1,0 +1,44 @@
+#include "cli_common.hpp"
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+namespace lgh::cli {
+
+void addContextFlags(CLI::App& app, ContextFlags& flags) {
+  app.add_option("--backend", flags.backend,
+                 "GL context path: auto (egl-device, then surfaceless), egl-device, surfaceless, "
+                 "osmesa")
+      ->check(CLI::IsMember({"auto", "egl-device", "surfaceless", "osmesa"}))
+      ->capture_default_str();
+  app.add_option("--gpu", flags.gpu, "EGL device index (EGL's order, not CUDA's)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_flag("--require-gpu", flags.requireGpu,
+               "fail instead of rendering on a software rasterizer");
+  app.add_flag("--gl-debug", flags.glDebug, "create a KHR_debug context");
+  app.add_option("--asset-root", flags.assetRoot,
+                 "folder that scene asset paths resolve inside")
+      ->capture_default_str();
+  app.add_option("--log-level", flags.logLevel, "trace, debug, info, warn, error, off")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}))
+      ->capture_default_str();
+}
+
+RendererOptions rendererOptions(const ContextFlags& flags) {
+  RendererOptions options;
+  options.backend = parseContextBackend(flags.backend);
+  options.gpuIndex = flags.gpu;
+  options.requireGpu = flags.requireGpu;
+  options.glDebug = flags.glDebug;
+  options.assetRoot = flags.assetRoot;
+  return options;
+}
+
+void setUpLogging(const std::string& level) {
+  auto logger = spdlog::stderr_color_mt("lgh");
+  spdlog::set_default_logger(logger);
+  spdlog::set_level(spdlog::level::from_str(level));
+}
+
+}  // namespace lgh::cli

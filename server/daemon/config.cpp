@@ -1,0 +1,205 @@
+#include "config.hpp"
+
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+namespace lghd {
+namespace {
+
+constexpr const char* kDescription =
+    "lghd: headless GPU render service. POST a render request (JSON, see /openapi.json) to\n"
+    "/v1/render and get a PNG or EXR back; POST /v1/thumbnails renders a batch of glTF assets.\n"
+    "With no flags it serves the built-in demo scene on 127.0.0.1:8080:\n"
+    "  lghd &\n"
+    "  curl -s -X POST localhost:8080/v1/render -d '{}' -o demo.png\n"
+    "Every flag has an environment variable (shown as Env); a flag on the command line wins.";
+
+constexpr const char* kFooter =
+    "Exit status: 0 after a clean shutdown (SIGTERM/SIGINT), 1 when the GL context or the\n"
+    "self-test render fails, 2 for a bad command line. Documentation: docs/DAEMON.md.";
+
+// Numbers as the command line sees them; converted to DaemonConfig's units afterwards.
+struct RawFlags {
+  double deadlineSeconds = 30.0;
+  double graceSeconds = 10.0;
+  std::size_t sceneCacheMb = 512;
+  std::size_t maxBodyMb = 64;
+  int testRenderDelayMs = 0;
+  std::string authTokenFile;
+};
+
+void addServerFlags(CLI::App& app, DaemonConfig& config, RawFlags& raw) {
+  const char* group = "Server";
+  app.add_option("--host", config.host, "address to listen on (0.0.0.0: every interface)")
+      ->envname("LGHD_HOST")
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--port", config.port, "TCP port; 0 picks a free one (printed on stdout)")
+      ->envname("LGHD_PORT")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--http-threads", config.httpThreads,
+                 "HTTP worker threads (each serves one connection at a time)")
+      ->envname("LGHD_HTTP_THREADS")
+      ->check(CLI::Range(2, 1024))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--auth-token", config.authToken,
+                 "require 'Authorization: Bearer TOKEN' on every route but /healthz and /readyz "
+                 "(prefer the variable or --auth-token-file: flags show in ps)")
+      ->envname("LGHD_AUTH_TOKEN")
+      ->group(group);
+  app.add_option("--auth-token-file", raw.authTokenFile, "read the bearer token from this file")
+      ->envname("LGHD_AUTH_TOKEN_FILE")
+      ->check(CLI::ExistingFile)
+      ->group(group);
+  app.add_option("--grace-seconds", raw.graceSeconds,
+                 "on SIGTERM/SIGINT, how long queued renders may still finish before the rest "
+                 "are answered 503")
+      ->envname("LGHD_GRACE_SECONDS")
+      ->check(CLI::Range(0.0, 3600.0))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--log-format", config.logFormat, "json (one object per line) or text")
+      ->envname("LGHD_LOG_FORMAT")
+      ->check(CLI::IsMember({"json", "text"}))
+      ->capture_default_str()
+      ->group(group);
+}
+
+void addRenderFlags(CLI::App& app, DaemonConfig& config, RawFlags& raw) {
+  const char* group = "Rendering";
+  app.add_option("--queue-depth", config.queueDepth,
+                 "renders that may wait for the render thread; beyond that: 429 + Retry-After")
+      ->envname("LGHD_QUEUE_DEPTH")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--deadline-seconds", raw.deadlineSeconds,
+                 "per-request deadline (queue wait + render); past it: 504. A request's "
+                 "X-Lgh-Deadline-Ms header may shorten it")
+      ->envname("LGHD_DEADLINE_SECONDS")
+      ->check(CLI::Range(0.001, 86400.0))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--scene-cache-mb", raw.sceneCacheMb,
+                 "GPU memory budget of the scene cache (LRU by content hash), MiB")
+      ->envname("LGHD_SCENE_CACHE_MB")
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--test-render-delay-ms", raw.testRenderDelayMs,
+                 "FOR TESTS ONLY: sleep this long on the render thread before each render")
+      ->envname("LGHD_TEST_RENDER_DELAY_MS")
+      ->check(CLI::Range(0, 600000))
+      ->group("Testing");
+}
+
+void addLimitFlags(CLI::App& app, Limits& limits, RawFlags& raw) {
+  const char* group = "Limits (413 when exceeded)";
+  auto add = [&](const char* name, auto& value, const char* help, const char* env) {
+    app.add_option(name, value, help)
+        ->envname(env)
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str()
+        ->group(group);
+  };
+  add("--max-body-mb", raw.maxBodyMb, "request body size, MiB (uploads included)",
+      "LGHD_MAX_BODY_MB");
+  add("--max-width", limits.maxWidth, "image width, pixels", "LGHD_MAX_WIDTH");
+  add("--max-height", limits.maxHeight, "image height, pixels", "LGHD_MAX_HEIGHT");
+  add("--max-pixels", limits.maxPixels, "width * height", "LGHD_MAX_PIXELS");
+  add("--max-lights", limits.maxLights, "lights given in a request", "LGHD_MAX_LIGHTS");
+  add("--max-vpls", limits.maxVpls, "VPLs (settings.lgh.vpl_count)", "LGHD_MAX_VPLS");
+  add("--max-triangles", limits.maxTriangles, "triangles drawn for one scene",
+      "LGHD_MAX_TRIANGLES");
+  add("--max-texture-size", limits.maxTextureSize, "texture width or height, pixels",
+      "LGHD_MAX_TEXTURE_SIZE");
+  add("--max-batch", limits.maxBatch, "thumbnails in one batch (assets x views)", "LGHD_MAX_BATCH");
+}
+
+void addContextEnvNames(CLI::App& app) {
+  app.get_option("--backend")->envname("LGHD_BACKEND")->group("GPU and context");
+  app.get_option("--gpu")->envname("LGHD_GPU")->group("GPU and context");
+  app.get_option("--require-gpu")->envname("LGHD_REQUIRE_GPU")->group("GPU and context");
+  app.get_option("--gl-debug")->envname("LGHD_GL_DEBUG")->group("GPU and context");
+  app.get_option("--asset-root")->envname("LGHD_ASSET_ROOT")->group("GPU and context");
+  app.get_option("--log-level")->envname("LGHD_LOG_LEVEL")->group("Server");
+}
+
+std::string readTokenFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string token = text.str();
+  const auto end = token.find_last_not_of(" \t\r\n");
+  return end == std::string::npos ? std::string() : token.substr(0, end + 1);
+}
+
+template <class Duration>
+Duration fromSeconds(double seconds) {
+  return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(seconds));
+}
+
+void applyRawFlags(const RawFlags& raw, DaemonConfig& config) {
+  config.deadline = fromSeconds<std::chrono::milliseconds>(raw.deadlineSeconds);
+  config.grace = fromSeconds<std::chrono::milliseconds>(raw.graceSeconds);
+  config.sceneCacheBytes = raw.sceneCacheMb << 20;
+  config.limits.maxBodyBytes = raw.maxBodyMb << 20;
+  config.testRenderDelay = std::chrono::milliseconds(raw.testRenderDelayMs);
+  if (!raw.authTokenFile.empty()) config.authToken = readTokenFile(raw.authTokenFile);
+}
+
+}  // namespace
+
+lgh::RendererOptions DaemonConfig::rendererOptions() const {
+  lgh::RendererOptions options = lgh::cli::rendererOptions(context);
+  options.maxTriangles = limits.maxTriangles;
+  options.maxTextureSize = limits.maxTextureSize;
+  options.sceneCacheBytes = sceneCacheBytes;
+  return options;
+}
+
+lgh::RequestLimits DaemonConfig::requestLimits() const {
+  lgh::RequestLimits requestLimits;
+  requestLimits.maxWidth = limits.maxWidth;
+  requestLimits.maxHeight = limits.maxHeight;
+  requestLimits.maxPixels = limits.maxPixels;
+  requestLimits.maxLights = limits.maxLights;
+  requestLimits.maxVpls = limits.maxVpls;
+  requestLimits.maxInlineGlbBytes = limits.maxBodyBytes;
+  return requestLimits;
+}
+
+ParsedConfig parseConfig(int argc, char** argv) {
+  CLI::App app{kDescription, "lghd"};
+  app.footer(kFooter);
+  app.set_version_flag("--version", std::string("lghd ") + LGHD_VERSION);
+  app.get_formatter()->column_width(34);
+
+  DaemonConfig config;
+  config.context.logLevel = "info";
+  RawFlags raw;
+  addServerFlags(app, config, raw);
+  lgh::cli::addContextFlags(app, config.context);
+  addContextEnvNames(app);
+  addRenderFlags(app, config, raw);
+  addLimitFlags(app, config.limits, raw);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int code = app.exit(error);  // prints the help, the version or the message
+    return {std::nullopt, code == 0 ? 0 : 2};
+  }
+  applyRawFlags(raw, config);
+  if (!raw.authTokenFile.empty() && config.authToken.empty()) {
+    std::cerr << "lghd: the token file " << raw.authTokenFile << " is empty\n";
+    return {std::nullopt, 2};
+  }
+  return {std::move(config), 0};
+}
+
+}  // namespace lghd

@@ -1,0 +1,56 @@
+// lghd's configuration: command-line flags, each with a matching LGHD_* environment variable
+// (a flag given on the command line wins over its variable). Defaults are safe for a public
+// render service: loopback only, bounded bodies, images, scenes, batches and queue.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "cli_common.hpp"
+#include "lgh/renderer.hpp"
+#include "lgh/request.hpp"
+
+namespace lghd {
+
+struct Limits {
+  std::size_t maxBodyBytes = 64ULL << 20;
+  int maxWidth = 4096;
+  int maxHeight = 4096;
+  std::int64_t maxPixels = 4096LL * 4096LL;
+  int maxLights = 4096;
+  int maxVpls = 1 << 20;
+  std::size_t maxTriangles = 5'000'000;
+  int maxTextureSize = 8192;
+  int maxBatch = 64;
+};
+
+struct DaemonConfig {
+  std::string host = "127.0.0.1";
+  int port = 8080;  // 0: any free port (printed on stdout)
+  int httpThreads = 32;
+  std::string authToken;  // empty: no authentication
+  int queueDepth = 16;
+  std::chrono::milliseconds deadline{30'000};
+  std::chrono::milliseconds grace{10'000};
+  std::size_t sceneCacheBytes = 512ULL << 20;
+  std::string logFormat = "json";  // json | text
+  std::chrono::milliseconds testRenderDelay{0};
+  Limits limits;
+  lgh::cli::ContextFlags context;
+
+  lgh::RendererOptions rendererOptions() const;
+  lgh::RequestLimits requestLimits() const;
+};
+
+// Parses flags and environment. Returns the configuration, or the process exit code when the
+// command line asked for --help/--version or was wrong (the message is printed already).
+struct ParsedConfig {
+  std::optional<DaemonConfig> config;
+  int exitCode = 0;
+};
+ParsedConfig parseConfig(int argc, char** argv);
+
+}  // namespace lghd

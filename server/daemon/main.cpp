@@ -1,0 +1,107 @@
+// lghd: the HTTP render daemon. Startup: parse the configuration, bind the port (printing
+// "listening on HOST:PORT" as the first line on stdout), start the render thread, serve.
+// Shutdown (SIGTERM/SIGINT): /readyz turns 503 and new renders get 503, the listening socket
+// closes, queued renders may finish within --grace-seconds, what is left is answered 503, the
+// HTTP workers finish their answers, the render thread releases the GL context, exit 0.
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <thread>
+
+#include <spdlog/spdlog.h>
+
+#include "config.hpp"
+#include "daemon_context.hpp"
+#include "logging.hpp"
+#include "server.hpp"
+#include "shutdown.hpp"
+#include "version.hpp"
+
+namespace lghd {
+namespace {
+
+// How long the render thread may take to finish a render in progress once the HTTP side is done.
+constexpr auto kRenderThreadStopWait = std::chrono::seconds(10);
+
+// httplib::Server::stop() only acts once listen has started; a signal may come before that.
+void stopListening(httplib::Server& server, const std::atomic<bool>& listenReturned) {
+  while (!listenReturned && !server.is_running()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (!listenReturned) server.stop();
+}
+
+void shutdownSequence(const DaemonConfig& config, RenderQueue& queue, httplib::Server& server,
+                      const std::atomic<bool>& listenReturned) {
+  logging::event(spdlog::level::info, "shutdown", {{"grace_ms", config.grace.count()}});
+  queue.stopAccepting();
+  stopListening(server, listenReturned);
+  const bool drained = queue.drain(config.grace);
+  logging::event(spdlog::level::info, "drained", {{"all_finished", drained}});
+}
+
+nlohmann::json startupFields(const DaemonConfig& config, int port) {
+  return {{"version", kVersion},
+          {"host", config.host},
+          {"port", port},
+          {"backend", config.context.backend},
+          {"gpu", config.context.gpu},
+          {"queue_depth", config.queueDepth},
+          {"deadline_ms", config.deadline.count()},
+          {"auth", !config.authToken.empty()}};
+}
+
+int serve(const DaemonConfig& config) {
+  ShutdownSupervisor::blockSignals();
+  Metrics metrics;
+  RenderQueue queue({config.rendererOptions(), static_cast<std::size_t>(config.queueDepth),
+                     config.testRenderDelay},
+                    metrics);
+  HttpServer server;
+  DaemonContext context{config, config.requestLimits(), queue, metrics};
+  configureServer(server, context);
+
+  const int port = bindServer(server, config.host, config.port);
+  if (port < 0) {
+    logging::event(spdlog::level::critical, "bind_failed",
+                   {{"host", config.host}, {"port", config.port}});
+    return 1;
+  }
+  std::cout << "listening on " << config.host << ":" << port << std::endl;
+  logging::event(spdlog::level::info, "listening", startupFields(config, port));
+
+  std::atomic<bool> listenReturned = false;
+  ShutdownSupervisor supervisor;
+  supervisor.start([&] { shutdownSequence(config, queue, server, listenReturned); });
+  queue.start([&supervisor](const std::string& reason) { supervisor.requestStop(1, reason); });
+  server.listen_after_bind();
+  listenReturned = true;
+  supervisor.requestStop(0, "the HTTP server stopped");  // no-op after a signal
+  supervisor.join();
+
+  if (!queue.stop(kRenderThreadStopWait)) {
+    logging::event(spdlog::level::critical, "render_thread_stuck",
+                   {{"note", "exiting without releasing the GL context"}});
+    spdlog::default_logger()->flush();
+    std::fflush(nullptr);
+    std::_Exit(supervisor.exitCode());
+  }
+  logging::event(spdlog::level::info, "stopped", {{"exit_code", supervisor.exitCode()}});
+  return supervisor.exitCode();
+}
+
+}  // namespace
+}  // namespace lghd
+
+int main(int argc, char** argv) {
+  lghd::ParsedConfig parsed = lghd::parseConfig(argc, argv);
+  if (!parsed.config) return parsed.exitCode;
+  lghd::logging::setUp(parsed.config->context.logLevel, parsed.config->logFormat);
+  try {
+    return lghd::serve(*parsed.config);
+  } catch (const std::exception& error) {
+    lghd::logging::event(spdlog::level::critical, "fatal", {{"error", error.what()}});
+    return 1;
+  }
+}

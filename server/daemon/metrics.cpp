@@ -1,0 +1,171 @@
+#include "metrics.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "version.hpp"
+
+namespace lghd {
+namespace {
+
+const std::vector<double> kLatencyBuckets = {0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25,
+                                             0.5,   1,      2.5,   5,    10,    30,   60};
+const std::vector<double> kPassBuckets = {
+    0.0001, 0.00025, 0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 2.5, 5};
+
+std::string number(double value) { return fmt::format("{}", value); }
+
+void header(std::string& out, const char* name, const char* type, const char* help) {
+  out += fmt::format("# HELP {} {}\n# TYPE {} {}\n", name, help, name, type);
+}
+
+void counterLines(std::string& out, const char* name,
+                  const std::map<std::string, std::uint64_t>& values) {
+  for (const auto& [labels, value] : values)
+    out += fmt::format("{}{{{}}} {}\n", name, labels, value);
+}
+
+void histogramLines(std::string& out, const char* name,
+                    const std::map<std::string, Histogram>& values) {
+  for (const auto& [labels, histogram] : values) histogram.write(out, name, labels);
+}
+
+void gauge(std::string& out, const char* name, const char* help, double value) {
+  header(out, name, "gauge", help);
+  out += fmt::format("{} {}\n", name, number(value));
+}
+
+template <class Map, class... Args>
+auto& entry(Map& map, const std::string& labels, Args&&... args) {
+  auto it = map.find(labels);
+  if (it == map.end()) it = map.emplace(labels, typename Map::mapped_type(args...)).first;
+  return it->second;
+}
+
+}  // namespace
+
+std::string escapeLabel(const std::string& value) {
+  std::string escaped;
+  for (char c : value) {
+    if (c == '\\' || c == '"') escaped += '\\';
+    if (c == '\n') {
+      escaped += "\\n";
+      continue;
+    }
+    escaped += c;
+  }
+  return escaped;
+}
+
+Histogram::Histogram(std::vector<double> upperBounds)
+    : bounds_(std::move(upperBounds)), counts_(bounds_.size() + 1, 0) {}
+
+void Histogram::observe(double value) {
+  const auto bucket = std::lower_bound(bounds_.begin(), bounds_.end(), value) - bounds_.begin();
+  ++counts_[static_cast<std::size_t>(bucket)];
+  sum_ += value;
+  ++count_;
+}
+
+void Histogram::write(std::string& out, const std::string& name, const std::string& labels) const {
+  const std::string prefix = labels.empty() ? "" : labels + ",";
+  std::uint64_t cumulative = 0;
+  for (std::size_t i = 0; i < bounds_.size(); ++i) {
+    cumulative += counts_[i];
+    out +=
+        fmt::format("{}_bucket{{{}le=\"{}\"}} {}\n", name, prefix, number(bounds_[i]), cumulative);
+  }
+  out += fmt::format("{}_bucket{{{}le=\"+Inf\"}} {}\n", name, prefix, count_);
+  const std::string braces = labels.empty() ? "" : "{" + labels + "}";
+  out +=
+      fmt::format("{}_sum{} {}\n{}_count{} {}\n", name, braces, number(sum_), name, braces, count_);
+}
+
+void Metrics::recordRequest(const std::string& route, const std::string& method, int status,
+                            double seconds) {
+  const std::string routeLabel = fmt::format("route=\"{}\"", escapeLabel(route));
+  std::lock_guard lock(mutex_);
+  ++requests_[fmt::format("{},method=\"{}\",status=\"{}\"", routeLabel, escapeLabel(method),
+                          status)];
+  entry(requestSeconds_, routeLabel, kLatencyBuckets).observe(seconds);
+}
+
+void Metrics::recordRender(const std::string& outcome) {
+  std::lock_guard lock(mutex_);
+  ++renders_[fmt::format("outcome=\"{}\"", outcome)];
+}
+
+void Metrics::recordRenderTimes(const lgh::TimingTable& timings, double queueSeconds,
+                                bool cacheHit) {
+  std::lock_guard lock(mutex_);
+  queueWaitSeconds_.observe(queueSeconds);
+  for (const lgh::TimingRow& row : timings.rows) {
+    if (row.name == "total") {
+      entry(renderSeconds_, cacheHit ? "scene_cache=\"hit\"" : "scene_cache=\"miss\"",
+            kLatencyBuckets)
+          .observe(row.milliseconds / 1000.0);
+      continue;
+    }
+    const char* clock = row.clock == lgh::TimingRow::Clock::Gpu ? "gpu" : "cpu";
+    entry(passSeconds_, fmt::format("pass=\"{}\",clock=\"{}\"", escapeLabel(row.name), clock),
+          kPassBuckets)
+        .observe(row.milliseconds / 1000.0);
+  }
+}
+
+void Metrics::recordThumbnail(const std::string& status) {
+  std::lock_guard lock(mutex_);
+  ++thumbnails_[fmt::format("status=\"{}\"", status)];
+}
+
+std::string Metrics::exposition(const RuntimeGauges& gauges) const {
+  std::string out;
+  header(out, "lghd_build_info", "gauge", "Build of this daemon; the value is always 1.");
+  out += fmt::format("lghd_build_info{{version=\"{}\",image_io=\"{}\"}} 1\n", kVersion, kImageIo);
+  gauge(out, "lghd_ready", "1 once the GL context is up and the self-test render passed.",
+        gauges.ready ? 1 : 0);
+  gauge(out, "lghd_queue_depth", "Renders waiting for the render thread.",
+        static_cast<double>(gauges.queueDepth));
+  gauge(out, "lghd_queue_capacity", "Renders that may wait before requests get 429.",
+        static_cast<double>(gauges.queueCapacity));
+  gauge(out, "lghd_render_in_progress", "1 while the render thread is rendering.",
+        gauges.rendering ? 1 : 0);
+  header(out, "lghd_scene_cache_hits_total", "counter", "Scene cache lookups that hit.");
+  out += fmt::format("lghd_scene_cache_hits_total {}\n", gauges.sceneCacheHits);
+  header(out, "lghd_scene_cache_misses_total", "counter",
+         "Scene cache lookups that loaded and uploaded the scene.");
+  out += fmt::format("lghd_scene_cache_misses_total {}\n", gauges.sceneCacheMisses);
+  gauge(out, "lghd_scene_cache_entries", "Scenes held by the scene cache.",
+        static_cast<double>(gauges.sceneCacheEntries));
+  gauge(out, "lghd_scene_cache_bytes", "GPU memory held by cached scenes.",
+        static_cast<double>(gauges.sceneCacheBytes));
+  gauge(out, "lghd_scene_cache_budget_bytes", "GPU memory budget of the scene cache.",
+        static_cast<double>(gauges.sceneCacheBudgetBytes));
+
+  std::lock_guard lock(mutex_);
+  header(out, "lghd_http_requests_total", "counter",
+         "HTTP requests answered, by route and status.");
+  counterLines(out, "lghd_http_requests_total", requests_);
+  header(out, "lghd_http_request_duration_seconds", "histogram",
+         "Time from the request's headers to its answer, by route.");
+  histogramLines(out, "lghd_http_request_duration_seconds", requestSeconds_);
+  header(out, "lghd_renders_total", "counter",
+         "Renders by outcome: ok, error, timeout (finished after its deadline, discarded), "
+         "skipped (deadline passed or cancelled before it started).");
+  counterLines(out, "lghd_renders_total", renders_);
+  header(out, "lghd_render_duration_seconds", "histogram",
+         "Render time on the render thread (scene load to encoded image), by scene-cache result.");
+  histogramLines(out, "lghd_render_duration_seconds", renderSeconds_);
+  header(out, "lghd_render_pass_seconds", "histogram",
+         "Time of each pass of a render: clock=gpu from timer queries, clock=cpu from a steady "
+         "clock.");
+  histogramLines(out, "lghd_render_pass_seconds", passSeconds_);
+  header(out, "lghd_queue_wait_seconds", "histogram", "Time renders waited in the queue.");
+  queueWaitSeconds_.write(out, "lghd_queue_wait_seconds", "");
+  header(out, "lghd_thumbnails_total", "counter", "Thumbnails rendered in batches, by status.");
+  counterLines(out, "lghd_thumbnails_total", thumbnails_);
+  return out;
+}
+
+}  // namespace lghd

@@ -1,0 +1,71 @@
+// Prometheus metrics, kept in memory under one mutex and written in the text exposition format
+// (version 0.0.4) on GET /metrics. Label values come from fixed sets (routes, outcomes) or from
+// the renderer's pass names, so the series count stays bounded.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "lgh/timing.hpp"
+
+namespace lghd {
+
+class Histogram {
+ public:
+  explicit Histogram(std::vector<double> upperBounds);
+  void observe(double value);
+  // Appends the _bucket, _sum and _count lines of `name` with `labels` ("" or `a="b",c="d"`).
+  void write(std::string& out, const std::string& name, const std::string& labels) const;
+
+ private:
+  std::vector<double> bounds_;
+  std::vector<std::uint64_t> counts_;  // per bucket, not cumulative
+  double sum_ = 0.0;
+  std::uint64_t count_ = 0;
+};
+
+// Values read at scrape time from the queue and the renderer.
+struct RuntimeGauges {
+  std::size_t queueDepth = 0;
+  std::size_t queueCapacity = 0;
+  bool rendering = false;
+  bool ready = false;
+  std::uint64_t sceneCacheHits = 0;
+  std::uint64_t sceneCacheMisses = 0;
+  std::size_t sceneCacheEntries = 0;
+  std::size_t sceneCacheBytes = 0;
+  std::size_t sceneCacheBudgetBytes = 0;
+};
+
+class Metrics {
+ public:
+  // One answered HTTP request: `route` is the route pattern (or "other"), not the raw path.
+  void recordRequest(const std::string& route, const std::string& method, int status,
+                     double seconds);
+  // One render finished on the render thread: "ok", "error", "timeout" (the client was gone by
+  // then: result discarded) or "skipped" (never started: deadline passed or cancelled).
+  void recordRender(const std::string& outcome);
+  void recordRenderTimes(const lgh::TimingTable& timings, double queueSeconds, bool cacheHit);
+  void recordThumbnail(const std::string& status);
+
+  std::string exposition(const RuntimeGauges& gauges) const;
+
+ private:
+  using Labels = std::string;
+  mutable std::mutex mutex_;
+  std::map<Labels, std::uint64_t> requests_;    // route, method, status
+  std::map<Labels, Histogram> requestSeconds_;  // route
+  std::map<Labels, std::uint64_t> renders_;     // outcome
+  std::map<Labels, Histogram> passSeconds_;     // pass, clock
+  std::map<Labels, Histogram> renderSeconds_;   // cache
+  Histogram queueWaitSeconds_{{0.001, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 2.5, 5, 10, 30}};
+  std::map<Labels, std::uint64_t> thumbnails_;  // status
+};
+
+// `value` escaped for a label value: backslash, double quote and newline.
+std::string escapeLabel(const std::string& value);
+
+}  // namespace lghd

@@ -1,0 +1,281 @@
+#include "render_queue.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "logging.hpp"
+
+namespace lghd {
+namespace {
+
+double secondsBetween(Clock::time_point from, Clock::time_point to) {
+  return std::chrono::duration<double>(to - from).count();
+}
+
+lgh::RenderRequest selfTestRequest() {
+  lgh::RenderRequest request;  // the demo scene
+  request.output.width = 64;
+  request.output.height = 64;
+  return request;
+}
+
+}  // namespace
+
+RenderQueue::RenderQueue(Options options, Metrics& metrics)
+    : options_(std::move(options)), metrics_(metrics) {}
+
+RenderQueue::~RenderQueue() {
+  if (thread_.joinable()) stop(std::chrono::seconds(30));
+}
+
+void RenderQueue::start(FatalHandler onFatal) {
+  onFatal_ = std::move(onFatal);
+  thread_ = std::thread([this] { run(); });
+}
+
+// --- HTTP threads -------------------------------------------------------------------------------
+
+std::shared_ptr<RenderJob> RenderQueue::submit(std::vector<lgh::RenderRequest> requests,
+                                               const std::string& requestId,
+                                               Clock::time_point startDeadline) {
+  auto job = std::make_shared<RenderJob>();
+  job->requestId = requestId;
+  job->enqueued = Clock::now();
+  job->startDeadline = startDeadline;
+  for (auto& request : requests) {
+    job->tickets.push_back(std::make_shared<RenderTicket>(std::move(request)));
+  }
+  {
+    std::lock_guard lock(mutex_);
+    if (!accepting_) throw unavailable("the daemon is shutting down");
+    if (state_ == State::Starting) {
+      throw unavailable("starting: the GL context and its self-test render are not ready yet")
+          .withRetryAfter(1);
+    }
+    if (state_ == State::Failed) throw unavailable("no working GL context: " + failure_);
+    if (jobs_.size() >= options_.capacity) {
+      throw queueFull(fmt::format("the render queue is full ({} waiting)", jobs_.size()),
+                      retryAfterSeconds());
+    }
+    jobs_.push_back(job);
+  }
+  workCondition_.notify_one();
+  return job;
+}
+
+int RenderQueue::retryAfterSeconds() const {
+  const double wait = averageRenderSeconds_ * static_cast<double>(jobs_.size() + 1);
+  return std::max(1, static_cast<int>(std::ceil(wait)));
+}
+
+bool RenderQueue::ready() const {
+  std::lock_guard lock(mutex_);
+  return state_ == State::Ready && accepting_;
+}
+
+std::string RenderQueue::notReadyReason() const {
+  std::lock_guard lock(mutex_);
+  if (!accepting_) return "shutting down";
+  switch (state_) {
+    case State::Starting:
+      return "starting: GL context and self-test render not done yet";
+    case State::Failed:
+      return "no working GL context: " + failure_;
+    default:
+      return "";
+  }
+}
+
+std::optional<lgh::DeviceInfo> RenderQueue::device() const {
+  std::lock_guard lock(mutex_);
+  return device_;
+}
+
+RuntimeGauges RenderQueue::gauges() const {
+  std::lock_guard lock(mutex_);
+  RuntimeGauges gauges;
+  gauges.queueDepth = jobs_.size();
+  gauges.queueCapacity = options_.capacity;
+  gauges.rendering = current_ != nullptr;
+  gauges.ready = state_ == State::Ready && accepting_;
+  gauges.sceneCacheHits = cacheStats_.hits;
+  gauges.sceneCacheMisses = cacheStats_.misses;
+  gauges.sceneCacheEntries = cacheStats_.entries;
+  gauges.sceneCacheBytes = cacheStats_.bytes;
+  gauges.sceneCacheBudgetBytes = options_.renderer.sceneCacheBytes;
+  return gauges;
+}
+
+// --- Shutdown -----------------------------------------------------------------------------------
+
+void RenderQueue::stopAccepting() {
+  std::lock_guard lock(mutex_);
+  accepting_ = false;
+}
+
+void RenderQueue::failAll(RenderJob& job, const ApiError& error) {
+  job.cancelled = true;
+  for (const auto& ticket : job.tickets) ticket->fail(error);
+}
+
+bool RenderQueue::drain(Clock::duration grace) {
+  std::unique_lock lock(mutex_);
+  const bool idle =
+      idleCondition_.wait_for(lock, grace, [this] { return jobs_.empty() && !current_; });
+  if (idle) return true;
+  const ApiError cancelled = unavailable("the daemon is shutting down: render cancelled");
+  logging::event(spdlog::level::warn, "drain_timeout",
+                 {{"cancelled_jobs", jobs_.size() + (current_ ? 1 : 0)}});
+  for (const auto& job : jobs_) failAll(*job, cancelled);
+  jobs_.clear();
+  if (current_) failAll(*current_, cancelled);
+  return false;
+}
+
+bool RenderQueue::stop(Clock::duration wait) {
+  std::unique_lock lock(mutex_);
+  accepting_ = false;
+  stopping_ = true;
+  workCondition_.notify_all();
+  const bool done = idleCondition_.wait_for(lock, wait, [this] { return threadDone_; });
+  lock.unlock();
+  if (!thread_.joinable()) return true;
+  if (!done) {
+    thread_.detach();  // stuck in a driver call; the process is about to exit
+    return false;
+  }
+  thread_.join();
+  return true;
+}
+
+// --- The render thread --------------------------------------------------------------------------
+
+void RenderQueue::run() {
+  if (bringUpRenderer()) {
+    while (std::shared_ptr<RenderJob> job = takeJob()) {
+      runJob(*job);
+      finishJob();
+    }
+  }
+  renderer_.reset();  // the context is destroyed on the thread that made it
+  std::lock_guard lock(mutex_);
+  threadDone_ = true;
+  idleCondition_.notify_all();
+}
+
+bool RenderQueue::bringUpRenderer() {
+  const auto start = Clock::now();
+  try {
+    renderer_ = std::make_unique<lgh::Renderer>(options_.renderer);
+    const lgh::RenderResult selfTest = renderer_->render(selfTestRequest());
+    if (selfTest.encoded.empty()) throw internalError("the self-test render produced no image");
+  } catch (const std::exception& error) {
+    renderer_.reset();
+    {
+      std::lock_guard lock(mutex_);
+      state_ = State::Failed;
+      failure_ = error.what();
+      const ApiError noContext = unavailable(std::string("no working GL context: ") + error.what());
+      for (const auto& job : jobs_) failAll(*job, noContext);
+      jobs_.clear();
+    }
+    logging::event(spdlog::level::critical, "renderer_failed", {{"error", error.what()}});
+    if (onFatal_) onFatal_(error.what());
+    return false;
+  }
+  publishCacheStats();
+  std::lock_guard lock(mutex_);
+  device_ = renderer_->device();
+  state_ = State::Ready;
+  logging::event(spdlog::level::info, "ready",
+                 {{"device", device_->toJson()},
+                  {"startup_ms", secondsBetween(start, Clock::now()) * 1000.0}});
+  return true;
+}
+
+// After a GL failure the context may be broken: replace it rather than serve from it.
+void RenderQueue::recoverRenderer(const std::string& reason) {
+  logging::event(spdlog::level::err, "renderer_reset", {{"reason", reason}});
+  renderer_.reset();
+  {
+    std::lock_guard lock(mutex_);
+    state_ = State::Starting;
+  }
+  bringUpRenderer();
+}
+
+std::shared_ptr<RenderJob> RenderQueue::takeJob() {
+  std::unique_lock lock(mutex_);
+  workCondition_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });
+  if (stopping_ || state_ == State::Failed) return nullptr;
+  current_ = std::move(jobs_.front());
+  jobs_.pop_front();
+  return current_;
+}
+
+void RenderQueue::finishJob() {
+  std::lock_guard lock(mutex_);
+  current_.reset();
+  idleCondition_.notify_all();
+}
+
+void RenderQueue::runJob(RenderJob& job) {
+  if (Clock::now() > job.startDeadline) {
+    failAll(job, timedOut("the render waited in the queue past its deadline"));
+    for (std::size_t i = 0; i < job.tickets.size(); ++i) metrics_.recordRender("skipped");
+    logging::event(spdlog::level::warn, "job_expired_in_queue", {{"request_id", job.requestId}});
+    return;
+  }
+  for (const auto& ticket : job.tickets) {
+    if (job.cancelled) ticket->fail(unavailable("the batch was cancelled"));
+    if (ticket->settled()) {  // its waiter gave up (deadline) or the job was cancelled
+      metrics_.recordRender("skipped");
+      continue;
+    }
+    renderTicket(job, *ticket);
+    if (!renderer_) {  // recovery failed: the daemon is going down
+      failAll(job, unavailable("no working GL context"));
+      return;
+    }
+  }
+}
+
+void RenderQueue::renderTicket(const RenderJob& job, RenderTicket& ticket) {
+  ticket.markStarted();
+  const auto start = Clock::now();
+  if (options_.testRenderDelay.count() > 0) std::this_thread::sleep_for(options_.testRenderDelay);
+  try {
+    lgh::RenderResult result = renderer_->render(ticket.request());
+    publishCacheStats();
+    metrics_.recordRenderTimes(result.timings, secondsBetween(job.enqueued, start),
+                               result.sceneCacheHit);
+    if (ticket.complete(std::move(result))) {
+      metrics_.recordRender("ok");
+    } else {
+      metrics_.recordRender("timeout");
+      logging::event(spdlog::level::warn, "render_discarded",
+                     {{"request_id", job.requestId},
+                      {"render_ms", secondsBetween(start, Clock::now()) * 1000.0}});
+    }
+  } catch (const lgh::Error& error) {
+    ticket.fail(fromLghError(error));
+    metrics_.recordRender("error");
+    if (error.code() == lgh::ErrorCode::Internal) recoverRenderer(error.what());
+  } catch (const std::exception& error) {
+    ticket.fail(internalError(error.what()));
+    metrics_.recordRender("error");
+    recoverRenderer(error.what());
+  }
+  std::lock_guard lock(mutex_);
+  const double seconds = secondsBetween(start, Clock::now());
+  averageRenderSeconds_ = 0.8 * averageRenderSeconds_ + 0.2 * seconds;
+}
+
+void RenderQueue::publishCacheStats() {
+  const lgh::Renderer::CacheStats stats = renderer_->sceneCacheStats();
+  std::lock_guard lock(mutex_);
+  cacheStats_ = stats;
+}
+
+}  // namespace lghd

@@ -1,0 +1,109 @@
+// The bounded render queue and the one render thread that owns the GL context.
+//
+// HTTP threads parse and validate, then submit() a job (one render, or a thumbnail batch) and wait
+// on its tickets. The render thread constructs lgh::Renderer itself (a GL context belongs to the
+// thread that made it), runs a 64x64 self-test of the demo scene before the daemon reports ready,
+// then renders jobs in arrival order. Deadlines:
+//  - a job still queued when its start deadline passes is answered 504 without rendering;
+//  - a render still running at its waiter's deadline is answered 504 by the waiter; the render
+//    thread finishes it and discards the result, so the context stays healthy for the next job.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "metrics.hpp"
+#include "render_ticket.hpp"
+
+namespace lghd {
+
+struct RenderJob {
+  std::string requestId;
+  std::vector<std::shared_ptr<RenderTicket>> tickets;
+  Clock::time_point enqueued;
+  Clock::time_point startDeadline;
+  std::atomic<bool> cancelled{false};  // the client went away: skip what has not started
+};
+
+class RenderQueue {
+ public:
+  struct Options {
+    lgh::RendererOptions renderer;
+    std::size_t capacity = 16;
+    std::chrono::milliseconds testRenderDelay{0};
+  };
+  using FatalHandler = std::function<void(const std::string& reason)>;
+
+  RenderQueue(Options options, Metrics& metrics);
+  ~RenderQueue();
+  RenderQueue(const RenderQueue&) = delete;
+  RenderQueue& operator=(const RenderQueue&) = delete;
+
+  // Starts the render thread; `onFatal` runs (on that thread) when no working context can be had.
+  void start(FatalHandler onFatal);
+
+  // Queues the renders as one job. Throws ApiError: 503 while starting or shutting down, 429 with
+  // Retry-After when the queue is full.
+  std::shared_ptr<RenderJob> submit(std::vector<lgh::RenderRequest> requests,
+                                    const std::string& requestId, Clock::time_point startDeadline);
+
+  bool ready() const;
+  // Why the daemon is not ready ("" when it is).
+  std::string notReadyReason() const;
+  // The device the context runs on, once it is up.
+  std::optional<lgh::DeviceInfo> device() const;
+  // Queue and scene-cache values for /metrics and /v1/info.
+  RuntimeGauges gauges() const;
+
+  // Shutdown, in this order: refuse new jobs (503); let queued jobs finish for up to `grace`, then
+  // answer what is left 503 (returns whether everything finished); end the render thread, waiting
+  // up to `wait` for a render in progress (returns false if it did not end: a hung driver).
+  void stopAccepting();
+  bool drain(Clock::duration grace);
+  bool stop(Clock::duration wait);
+
+ private:
+  enum class State { Starting, Ready, Failed };
+
+  void run();
+  bool bringUpRenderer();
+  void recoverRenderer(const std::string& reason);
+  std::shared_ptr<RenderJob> takeJob();
+  void runJob(RenderJob& job);
+  void renderTicket(const RenderJob& job, RenderTicket& ticket);
+  void finishJob();
+  void publishCacheStats();
+  int retryAfterSeconds() const;  // under mutex_
+  void failAll(RenderJob& job, const ApiError& error);
+
+  Options options_;
+  Metrics& metrics_;
+  FatalHandler onFatal_;
+  std::unique_ptr<lgh::Renderer> renderer_;  // render thread only
+
+  mutable std::mutex mutex_;
+  std::condition_variable workCondition_;
+  std::condition_variable idleCondition_;
+  std::deque<std::shared_ptr<RenderJob>> jobs_;
+  std::shared_ptr<RenderJob> current_;
+  State state_ = State::Starting;
+  bool accepting_ = true;
+  bool stopping_ = false;
+  bool threadDone_ = false;
+  std::string failure_;
+  std::optional<lgh::DeviceInfo> device_;
+  lgh::Renderer::CacheStats cacheStats_;
+  double averageRenderSeconds_ = 0.1;
+  std::thread thread_;
+};
+
+}  // namespace lghd

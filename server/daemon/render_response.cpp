@@ -1,0 +1,60 @@
+#include "render_response.hpp"
+
+#include <fmt/format.h>
+
+#include "base64.hpp"
+#include "http_util.hpp"
+
+namespace lghd {
+namespace {
+
+// ASCII-only compact JSON: safe in a header value.
+std::string headerJson(const nlohmann::json& value) {
+  return value.dump(-1, ' ', true, nlohmann::json::error_handler_t::replace);
+}
+
+// Server-Timing metric names are HTTP tokens.
+std::string timingToken(const std::string& name) {
+  std::string token;
+  for (char c : name) token += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return token;
+}
+
+std::string serverTiming(const lgh::TimingTable& timings, double queueMs) {
+  std::string header = fmt::format("queue;dur={:.3f}", queueMs);
+  for (const lgh::TimingRow& row : timings.rows) {
+    header += fmt::format(", {};dur={:.3f};desc=\"{}\"", timingToken(row.name), row.milliseconds,
+                          row.clock == lgh::TimingRow::Clock::Gpu ? "gpu" : "cpu");
+  }
+  return header;
+}
+
+}  // namespace
+
+void setRenderHeaders(httplib::Response& response, const RenderAnswer& answer) {
+  const lgh::RenderResult& result = answer.result;
+  response.set_header("X-Lgh-Timings", headerJson(result.timings.toJson()));
+  response.set_header("Server-Timing", serverTiming(result.timings, answer.queueMs));
+  response.set_header("X-Lgh-Renderer", headerSafe(result.device.glRenderer));
+  response.set_header("X-Lgh-Context", headerSafe(result.device.contextPath));
+  response.set_header("X-Lgh-Cache", result.sceneCacheHit ? "hit" : "miss");
+  response.set_header("X-Lgh-Queue-Ms", fmt::format("{:.3f}", answer.queueMs));
+  response.set_header("X-Lgh-Render-Ms", fmt::format("{:.3f}", result.timings.get("total")));
+  response.set_header("X-Lgh-Paths", headerJson(result.paths));
+  response.set_header("X-Lgh-Warnings", headerJson(result.warnings));
+}
+
+nlohmann::json renderResponseJson(const RenderAnswer& answer) {
+  const lgh::RenderResult& result = answer.result;
+  return {{"image", base64Encode(result.encoded)},
+          {"mime", result.mimeType},
+          {"width", answer.width},
+          {"height", answer.height},
+          {"timings", result.timings.toJson()},
+          {"device", result.device.toJson()},
+          {"paths", result.paths},
+          {"warnings", result.warnings},
+          {"request_id", answer.requestId}};
+}
+
+}  // namespace lghd

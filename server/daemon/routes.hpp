@@ -1,0 +1,19 @@
+// The HTTP routes, one registration function per file.
+#pragma once
+
+#include <httplib.h>
+
+#include "daemon_context.hpp"
+
+namespace lghd {
+
+// POST /v1/render
+void addRenderRoutes(httplib::Server& server, DaemonContext& context);
+// POST /v1/thumbnails
+void addThumbnailRoutes(httplib::Server& server, DaemonContext& context);
+// GET /healthz, /readyz, /v1/info, /metrics
+void addStatusRoutes(httplib::Server& server, DaemonContext& context);
+// GET /openapi.json and the JSON Schemas it references
+void addDocumentRoutes(httplib::Server& server);
+
+}  // namespace lghd

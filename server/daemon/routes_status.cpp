@@ -1,0 +1,102 @@
+// GET /healthz (liveness: the process serves HTTP), /readyz (the context is up and the self-test
+// render passed; 503 while starting or shutting down), /v1/info and /metrics.
+#include <httplib.h>
+
+#include "http_util.hpp"
+#include "routes.hpp"
+#include "version.hpp"
+
+namespace lghd {
+namespace {
+
+using json = nlohmann::json;
+
+json limitsJson(const DaemonConfig& config) {
+  const Limits& limits = config.limits;
+  return {{"max_body_bytes", limits.maxBodyBytes}, {"max_width", limits.maxWidth},
+          {"max_height", limits.maxHeight},        {"max_pixels", limits.maxPixels},
+          {"max_lights", limits.maxLights},        {"max_vpls", limits.maxVpls},
+          {"max_triangles", limits.maxTriangles},  {"max_texture_size", limits.maxTextureSize},
+          {"max_batch", limits.maxBatch},          {"queue_depth", config.queueDepth},
+          {"deadline_ms", config.deadline.count()}};
+}
+
+json buildJson() {
+  return {{"version", kVersion},
+          {"build_type", kBuildType},
+          {"compiler", kCompiler},
+          {"image_io", kImageIo},
+          {"httplib", CPPHTTPLIB_VERSION}};
+}
+
+json cacheJson(const RuntimeGauges& gauges) {
+  return {{"hits", gauges.sceneCacheHits},
+          {"misses", gauges.sceneCacheMisses},
+          {"entries", gauges.sceneCacheEntries},
+          {"bytes", gauges.sceneCacheBytes},
+          {"budget_bytes", gauges.sceneCacheBudgetBytes}};
+}
+
+// The renderer has no Vulkan sidecar yet: report that plainly rather than omit the member.
+json vulkanJson() {
+  return {{"available", false},
+          {"api_version", nullptr},
+          {"device", nullptr},
+          {"sidecar_path", nullptr},
+          {"note", "this build has no Vulkan shadow-ray sidecar"}};
+}
+
+json infoJson(const DaemonContext& context) {
+  const RuntimeGauges gauges = context.queue.gauges();
+  const std::optional<lgh::DeviceInfo> device = context.queue.device();
+  const std::string reason = context.queue.notReadyReason();
+  return {{"service", "lghd"},
+          {"build", buildJson()},
+          {"ready", reason.empty()},
+          {"status", reason.empty() ? "ready" : reason},
+          {"device", device ? device->toJson() : json()},
+          {"vulkan", vulkanJson()},
+          {"limits", limitsJson(context.config)},
+          {"queue",
+           {{"depth", gauges.queueDepth},
+            {"capacity", gauges.queueCapacity},
+            {"rendering", gauges.rendering}}},
+          {"scene_cache", cacheJson(gauges)},
+          {"auth", !context.config.authToken.empty()}};
+}
+
+}  // namespace
+
+void addStatusRoutes(httplib::Server& server, DaemonContext& context) {
+  server.Get("/healthz", [](const httplib::Request&, httplib::Response& response) {
+    sendJson(response, 200, {{"status", "ok"}});
+  });
+  server.Get("/readyz", [&context](const httplib::Request&, httplib::Response& response) {
+    const std::string reason = context.queue.notReadyReason();
+    if (reason.empty()) {
+      sendJson(response, 200, {{"status", "ready"}});
+    } else {
+      sendError(response, unavailable(reason));
+    }
+  });
+  server.Get("/v1/info", guarded([&context](const httplib::Request&, httplib::Response& response) {
+               sendJson(response, 200, infoJson(context));
+             }));
+  server.Get("/metrics", [&context](const httplib::Request&, httplib::Response& response) {
+    response.set_content(context.metrics.exposition(context.queue.gauges()),
+                         "text/plain; version=0.0.4; charset=utf-8");
+  });
+}
+
+void addDocumentRoutes(httplib::Server& server) {
+  auto document = [](const std::string& name, httplib::Response& response) {
+    response.set_content(lgh::protoDocument(name), "application/json");
+  };
+  // /openapi.json, and the JSON Schemas its relative $refs name, beside it and under /proto/.
+  server.Get(R"(/(?:proto/)?([a-z0-9-]+\.schema\.json|openapi\.json))",
+             guarded([document](const httplib::Request& request, httplib::Response& response) {
+               document(request.matches[1].str(), response);
+             }));
+}
+
+}  // namespace lghd

@@ -1,0 +1,36 @@
+// lgh-bench: benchmarks of the lghd renderer on this machine's GPU, one subcommand each.
+//   lgh-bench construct --vpls 1000,10000,100000,1000000 [--method gather|scatter|both]
+//                       [--levels L|auto] [--iterations K] [--warmup W] [--json] [--gpu N]
+//   lgh-bench render ...  (see server/bench/render.cpp)
+// Subcommands register themselves from server/bench/<name>.cpp (see bench/bench_command.hpp).
+#include <iostream>
+#include <vector>
+
+#include "bench/bench_command.hpp"
+#include "cli_common.hpp"
+#include "lgh/error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"lgh-bench: benchmarks of the lghd renderer (GPU timer queries, medians)"};
+  lgh::cli::ContextFlags context;
+  lgh::cli::addContextFlags(app, context);
+  app.require_subcommand(1);
+  std::vector<lgh::bench::Command> commands{lgh::bench::addConstructCommand(app, context),
+                                            lgh::bench::addRenderCommand(app, context)};
+  CLI11_PARSE(app, argc, argv);
+  lgh::cli::setUpLogging(context.logLevel);
+  for (const auto& command : commands) {
+    if (!command.app->parsed()) continue;
+    try {
+      return command.run();
+    } catch (const lgh::Error& error) {
+      std::cerr << "lgh-bench: error (" << lgh::errorCodeName(error.code()) << "): " << error.what()
+                << '\n';
+      return 1;
+    } catch (const std::exception& error) {
+      std::cerr << "lgh-bench: error: " << error.what() << '\n';
+      return 1;
+    }
+  }
+  return 2;
+}

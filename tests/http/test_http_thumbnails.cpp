@@ -1,0 +1,193 @@
+// POST /v1/thumbnails against the real daemon: ZIP and NDJSON answers, uploads, views and name
+// templates, and bad assets that must not sink the batch.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <sstream>
+
+#include "daemon_process.hpp"
+#include "http_helpers.hpp"
+
+namespace lghd::test {
+namespace {
+
+class ThumbnailsTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { daemon = new DaemonProcess({"--max-batch", "8"}); }
+  static void TearDownTestSuite() {
+    delete daemon;
+    daemon = nullptr;
+  }
+  void SetUp() override { http = daemon->client(); }
+  void TearDown() override {
+    if (HasFailure()) std::cerr << "--- lghd log ---\n" << daemon->log();
+  }
+
+  static DaemonProcess* daemon;
+  std::unique_ptr<httplib::Client> http;
+};
+DaemonProcess* ThumbnailsTest::daemon = nullptr;
+
+std::vector<json> ndjsonLines(const std::string& body) {
+  std::vector<json> lines;
+  std::istringstream stream(body);
+  std::string line;
+  while (std::getline(stream, line)) {
+    if (!line.empty()) lines.push_back(json::parse(line));
+  }
+  return lines;
+}
+
+TEST_F(ThumbnailsTest, ZipHoldsGoodThumbnailsAndErrorsOfBadAssets) {
+  const json request = {{"assets",
+                         {"BoxTextured-glTF-Binary/BoxTextured.glb", "missing/Nothing.glb",
+                          "BoxTextured-glTF/BoxTextured.gltf", "../secret.glb"}},
+                        {"width", 64},
+                        {"height", 48},
+                        {"name_template", "{index}-{name}_{view}.png"}};
+  const auto result = postJson(*http, "/v1/thumbnails", request);
+  ASSERT_TRUE(result);
+  ASSERT_EQ(result->status, 200) << result->body;
+  EXPECT_EQ(result->get_header_value("Content-Type"), "application/zip");
+  EXPECT_EQ(result->get_header_value("X-Lgh-Thumbnails-Ok"), "2");
+  EXPECT_EQ(result->get_header_value("X-Lgh-Thumbnails-Failed"), "2");
+  const auto members = unzip(result->body);
+  ASSERT_EQ(members.size(), 3U);
+  ASSERT_TRUE(members.contains("0-BoxTextured_default.png"));
+  ASSERT_TRUE(members.contains("2-BoxTextured_default.png"));
+  const auto image = decodeBody(members.at("0-BoxTextured_default.png"));
+  EXPECT_EQ(image.width, 64);
+  EXPECT_EQ(image.height, 48);
+
+  ASSERT_TRUE(members.contains("errors.json"));
+  const json errors = json::parse(members.at("errors.json"));
+  ASSERT_EQ(errors.size(), 2U);
+  EXPECT_EQ(errors[0]["asset"], "missing/Nothing.glb");
+  EXPECT_EQ(errors[0]["error"]["code"], "not_found");
+  EXPECT_EQ(errors[0]["error"]["field"], "/assets/1");
+  EXPECT_EQ(errors[1]["asset"], "../secret.glb");
+  EXPECT_EQ(errors[1]["error"]["code"], "bad_request");
+}
+
+TEST_F(ThumbnailsTest, NdjsonStreamsEachResultWithProgressThenASummary) {
+  const json request = {{"assets",
+                         {"BoxTextured-glTF-Binary/BoxTextured.glb", "escape.glb",
+                          "BoxTextured-glTF-Embedded/BoxTextured.gltf"}},
+                        {"width", 32},
+                        {"height", 32},
+                        {"format", "ndjson"},
+                        {"transparent_background", true}};
+  httplib::Request streamed;
+  streamed.method = "POST";
+  streamed.path = "/v1/thumbnails";
+  streamed.body = request.dump();
+  streamed.set_header("Content-Type", "application/json");
+  std::string body;
+  int chunks = 0;
+  streamed.content_receiver = [&](const char* data, std::size_t length, std::uint64_t,
+                                  std::uint64_t) {
+    body.append(data, length);
+    ++chunks;
+    return true;
+  };
+  httplib::Response response;
+  httplib::Error error = httplib::Error::Success;
+  ASSERT_TRUE(http->send(streamed, response, error)) << httplib::to_string(error);
+  ASSERT_EQ(response.status, 200);
+  EXPECT_EQ(response.get_header_value("Content-Type"), "application/x-ndjson");
+  EXPECT_GE(chunks, 2) << "each result should arrive as it finishes";
+
+  const std::vector<json> lines = ndjsonLines(body);
+  ASSERT_EQ(lines.size(), 4U) << body;
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(lines[i]["index"], i);
+    EXPECT_EQ(lines[i]["total"], 3);
+    EXPECT_EQ(lines[i]["completed"], i + 1);
+  }
+  EXPECT_EQ(lines[0]["status"], "ok");
+  EXPECT_EQ(lines[1]["status"], "error");
+  EXPECT_EQ(lines[1]["error"]["code"], "bad_request");
+  EXPECT_EQ(lines[2]["status"], "ok");
+  EXPECT_TRUE(lines[0]["timings"].is_array());
+
+  const std::string png = lines[0]["image_base64"];
+  EXPECT_EQ(png.rfind("iVBORw0KGgo", 0), 0U);
+  EXPECT_EQ(lines[3]["status"], "done");
+  EXPECT_EQ(lines[3]["ok"], 2);
+  EXPECT_EQ(lines[3]["failed"], 1);
+}
+
+TEST_F(ThumbnailsTest, TransparentBackgroundLeavesAlphaZeroAroundTheModel) {
+  const json request = {{"assets", {"BoxTextured-glTF-Binary/BoxTextured.glb"}},
+                        {"width", 64},
+                        {"height", 64},
+                        {"transparent_background", true}};
+  const auto result = postJson(*http, "/v1/thumbnails", request);
+  ASSERT_TRUE(result);
+  ASSERT_EQ(result->status, 200) << result->body;
+  const auto members = unzip(result->body);
+  ASSERT_EQ(members.size(), 1U);
+  const auto image = decodeBody(members.begin()->second);
+  ASSERT_EQ(image.channels, 4);
+  EXPECT_EQ(image.pixels8[3], 0) << "the corner pixel is background";
+  const std::size_t centre = (32 * 64 + 32) * 4 + 3;
+  EXPECT_EQ(image.pixels8[centre], 255) << "the centre pixel is the box";
+}
+
+TEST_F(ThumbnailsTest, UploadsAndSeveralViewsWithANameTemplate) {
+  const json options = {{"width", 32},
+                        {"height", 32},
+                        {"views",
+                         {{{"name", "front"}, {"direction", {0, 0, 1}}},
+                          {{"name", "top"}, {"direction", {0, 1, 0.01}}}}},
+                        {"name_template", "{name}-{view}.png"}};
+  const auto result = http->Post(
+      "/v1/thumbnails",
+      httplib::MultipartFormDataItems{requestPart(options),
+                                      filePart("BoxTextured-glTF-Binary/BoxTextured.glb", "a.glb"),
+                                      filePart("BoxTextured-glTF/BoxTextured.gltf"),
+                                      filePart("BoxTextured-glTF/BoxTextured0.bin"),
+                                      filePart("BoxTextured-glTF/CesiumLogoFlat.png")});
+  ASSERT_TRUE(result);
+  ASSERT_EQ(result->status, 200) << result->body;
+  const auto members = unzip(result->body);
+  std::set<std::string> names;
+  for (const auto& [name, bytes] : members) names.insert(name);
+  EXPECT_EQ(names, (std::set<std::string>{"a-front.png", "a-top.png", "BoxTextured-front.png",
+                                          "BoxTextured-top.png"}));
+}
+
+TEST_F(ThumbnailsTest, DuplicateNamesAreMadeUnique) {
+  const json request = {
+      {"assets",
+       {"BoxTextured-glTF-Binary/BoxTextured.glb", "BoxTextured-glTF-Binary/BoxTextured.glb"}},
+      {"width", 32},
+      {"height", 32}};
+  const auto result = postJson(*http, "/v1/thumbnails", request);
+  ASSERT_TRUE(result);
+  ASSERT_EQ(result->status, 200) << result->body;
+  EXPECT_EQ(unzip(result->body).size(), 2U);
+}
+
+TEST_F(ThumbnailsTest, BatchLevelErrors) {
+  expectError(postJson(*http, "/v1/thumbnails", json::object()), 400, "bad_request");
+  const json tooMany = {{"assets", std::vector<std::string>(9, "a.glb")}};
+  EXPECT_EQ(expectError(postJson(*http, "/v1/thumbnails", tooMany), 413, "too_large")["field"],
+            "/assets");
+  const json wide = {{"assets", {"a.glb"}}, {"width", 5000}};
+  EXPECT_EQ(expectError(postJson(*http, "/v1/thumbnails", wide), 413, "too_large")["field"],
+            "/width");
+  const json badTemplate = {{"assets", {"a.glb"}}, {"name_template", "{nope}.png"}};
+  EXPECT_EQ(
+      expectError(postJson(*http, "/v1/thumbnails", badTemplate), 400, "bad_request")["field"],
+      "/name_template");
+  const json zeroView = {{"assets", {"a.glb"}}, {"view_direction", {0, 0, 0}}};
+  EXPECT_EQ(expectError(postJson(*http, "/v1/thumbnails", zeroView), 422, "invalid")["field"],
+            "/view_direction");
+  const json unknown = {{"assets", {"a.glb"}}, {"colour", "red"}};
+  expectError(postJson(*http, "/v1/thumbnails", unknown), 400, "bad_request");
+  EXPECT_EQ(http->Get("/healthz")->status, 200);
+}
+
+}  // namespace
+}  // namespace lghd::test

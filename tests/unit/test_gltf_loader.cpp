@@ -1,0 +1,852 @@
+// The glTF loader against real assets (Debian's assimp-testmodels), broken assets, hand-made
+// assets for the features those do not cover, and mutated GLBs.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include "lgh/error.hpp"
+#include "lgh/image.hpp"
+#include "scene/gltf_loader.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using lgh::Error;
+using lgh::ErrorCode;
+using lgh::Scene;
+using json = nlohmann::json;
+
+fs::path models() { return lgh::test::assimpGltfDir(); }
+
+bool isGltfFile(const fs::path& path) {
+  return path.extension() == ".gltf" || path.extension() == ".glb";
+}
+
+// Every .gltf/.glb under `dir`, sorted (for stable test output).
+std::vector<fs::path> gltfFilesUnder(const fs::path& dir) {
+  std::vector<fs::path> files;
+  if (!fs::is_directory(dir)) return files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    if (entry.is_regular_file() && isGltfFile(entry.path())) files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// Loads a file with its own folder as the asset root.
+Scene loadFile(const fs::path& path, const lgh::SceneLoadLimits& limits = {}) {
+  return lgh::loadGltfFile(path.parent_path(), path.filename().string(), limits);
+}
+
+// The lgh::Error loading `path` throws; a failure when it loads or throws something else.
+Error loadError(const fs::path& path, const lgh::SceneLoadLimits& limits = {}) {
+  try {
+    loadFile(path, limits);
+  } catch (const Error& error) {
+    return error;
+  } catch (const std::exception& error) {
+    ADD_FAILURE() << path << " threw a non-lgh exception: " << error.what();
+    return Error(ErrorCode::Internal, error.what());
+  }
+  ADD_FAILURE() << path << " loaded";
+  return Error(ErrorCode::Internal, "loaded");
+}
+
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+bool anyWarningContains(const Scene& scene, const std::string& part) {
+  return std::any_of(scene.warnings.begin(), scene.warnings.end(),
+                     [&](const std::string& warning) { return contains(warning, part); });
+}
+
+// What every successfully loaded scene must satisfy.
+void expectSane(const Scene& scene, const std::string& what) {
+  EXPECT_GT(scene.triangleCount(), 0U) << what;
+  ASSERT_FALSE(scene.bounds.empty()) << what;
+  EXPECT_TRUE(finite(scene.bounds.min) && finite(scene.bounds.max)) << what;
+  for (const lgh::MeshInstance& instance : scene.instances) {
+    ASSERT_GE(instance.mesh, 0) << what;
+    ASSERT_LT(static_cast<std::size_t>(instance.mesh), scene.meshes.size()) << what;
+  }
+  for (const lgh::Mesh& mesh : scene.meshes) {
+    for (const lgh::Primitive& primitive : mesh.primitives) {
+      ASSERT_EQ(primitive.indices.size() % 3, 0U) << what;
+      for (std::uint32_t index : primitive.indices) {
+        ASSERT_LT(index, primitive.vertices.size()) << what;
+      }
+      if (primitive.material >= 0) {
+        ASSERT_LT(static_cast<std::size_t>(primitive.material), scene.materials.size()) << what;
+      }
+      for (const lgh::Vertex& v : primitive.vertices) {
+        ASSERT_NEAR(glm::length(v.normal), 1.0F, 1e-3F) << what << " " << mesh.name;
+        ASSERT_NEAR(glm::length(glm::vec3(v.tangent)), 1.0F, 1e-3F) << what << " " << mesh.name;
+        ASSERT_EQ(std::abs(v.tangent.w), 1.0F) << what;
+      }
+    }
+  }
+  for (const lgh::Material& material : scene.materials) {
+    for (const lgh::TextureRef* ref :
+         {&material.baseColorTexture, &material.normalTexture, &material.metallicRoughnessTexture,
+          &material.occlusionTexture, &material.emissiveTexture}) {
+      if (!ref->valid()) continue;
+      ASSERT_LT(static_cast<std::size_t>(ref->image), scene.images.size()) << what;
+      const lgh::Image8& image = scene.images[static_cast<std::size_t>(ref->image)];
+      EXPECT_EQ(image.channels, 4) << what;
+      EXPECT_EQ(image.pixels.size(), static_cast<std::size_t>(image.width) * image.height * 4);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Real, valid assets.
+
+// glTF-Sample-Models in either layout: upstream's <Model>/glTF{,-Binary,-Embedded,...}/ or
+// Debian's flattened <Model>-glTF/. Excluded: the Draco variants (KHR_draco_mesh_compression is
+// a required extension we do not implement; see the draco test below).
+TEST(GltfLoader, SampleModelsLoad) {
+  const auto files = gltfFilesUnder(models() / "glTF-Sample-Models");
+  ASSERT_FALSE(files.empty()) << "assimp-testmodels not installed?";
+  for (const fs::path& file : files) {
+    if (contains(file.string(), "Draco")) continue;
+    SCOPED_TRACE(file.string());
+    try {
+      expectSane(loadFile(file), file.string());
+    } catch (const Error& error) {
+      ADD_FAILURE() << file << ": " << error.what();
+    }
+  }
+}
+
+// The other valid assets at the top of the collection, each directory as a whole.
+TEST(GltfLoader, OtherValidModelsLoad) {
+  const std::vector<std::string> directories = {"2CylinderEngine-glTF-Binary",
+                                                "BoxTexcoords-glTF",
+                                                "BoxTextured-glTF",
+                                                "BoxTextured-glTF-Binary",
+                                                "BoxTextured-glTF-Embedded",
+                                                "BoxTextured-glTF-pbrSpecularGlossiness",
+                                                "ClearCoat-glTF",
+                                                "cameras",
+                                                "simple_skin",
+                                                "textureTransform",
+                                                "issue_3269"};
+  std::size_t loaded = 0;
+  for (const std::string& directory : directories) {
+    for (const fs::path& file : gltfFilesUnder(models() / directory)) {
+      SCOPED_TRACE(file.string());
+      try {
+        expectSane(loadFile(file), file.string());
+        ++loaded;
+      } catch (const Error& error) {
+        ADD_FAILURE() << file << ": " << error.what();
+      }
+    }
+  }
+  EXPECT_GE(loaded, directories.size());
+}
+
+TEST(GltfLoader, TexturedBoxHasDecodedBaseColorTexture) {
+  for (const char* file :
+       {"BoxTextured-glTF/BoxTextured.gltf", "BoxTextured-glTF-Binary/BoxTextured.glb",
+        "BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
+    SCOPED_TRACE(file);
+    const Scene scene = loadFile(models() / file);
+    EXPECT_EQ(scene.triangleCount(), 12U);
+    ASSERT_EQ(scene.materials.size(), 1U);
+    const lgh::TextureRef& base = scene.materials[0].baseColorTexture;
+    ASSERT_TRUE(base.valid());
+    EXPECT_EQ(base.texCoord, 0);
+    ASSERT_EQ(scene.images.size(), 1U);
+    EXPECT_GT(scene.images[0].width, 0);
+    EXPECT_EQ(scene.images[0].channels, 4);
+    EXPECT_FLOAT_EQ(scene.materials[0].metallicFactor, 0.0F);
+    // The box is 1 unit, centred at the origin.
+    EXPECT_NEAR(scene.bounds.size().x, 1.0F, 1e-4F);
+    EXPECT_NEAR(scene.bounds.center().y, 0.0F, 1e-4F);
+    EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
+  }
+}
+
+TEST(GltfLoader, UnsupportedOptionalExtensionsWarn) {
+  const Scene clearCoat = loadFile(models() / "ClearCoat-glTF" / "ClearCoatTest.gltf");
+  EXPECT_TRUE(anyWarningContains(clearCoat, "KHR_materials_clearcoat"));
+  const Scene transform = loadFile(models() / "textureTransform" / "TextureTransformTest.gltf");
+  EXPECT_TRUE(anyWarningContains(transform, "KHR_texture_transform"));
+  const Scene skin = loadFile(models() / "simple_skin" / "simple_skin.gltf");
+  EXPECT_TRUE(anyWarningContains(skin, "skins are not supported"));
+}
+
+TEST(GltfLoader, Cameras) {
+  const Scene scene = loadFile(models() / "cameras" / "Cameras.gltf");
+  ASSERT_EQ(scene.cameras.size(), 2U);
+  const lgh::SceneCamera& perspective = scene.cameras[0];
+  EXPECT_TRUE(perspective.perspective);
+  EXPECT_FLOAT_EQ(perspective.yfov, 0.7F);
+  EXPECT_FLOAT_EQ(perspective.aspectRatio, 1.0F);
+  EXPECT_FLOAT_EQ(perspective.znear, 0.01F);
+  EXPECT_FLOAT_EQ(perspective.zfar, 100.0F);
+  EXPECT_EQ(glm::vec3(perspective.world[3]), glm::vec3(0.5F, 0.5F, 3.0F));
+  const lgh::SceneCamera& orthographic = scene.cameras[1];
+  EXPECT_FALSE(orthographic.perspective);
+  EXPECT_FLOAT_EQ(orthographic.xmag, 1.0F);
+  EXPECT_FLOAT_EQ(orthographic.ymag, 1.0F);
+}
+
+// Only TEXCOORD_1 while the material samples TEXCOORD_0 (assimp issue 3269): loads.
+TEST(GltfLoader, MissingTexcoordSetStillLoads) {
+  const Scene scene = loadFile(models() / "issue_3269" / "texcoord_crash.gltf");
+  EXPECT_EQ(scene.instances.size(), 5U);
+}
+
+// ---------------------------------------------------------------------------------------------
+// glTF-Asset-Generator: every suite present, every model. Models that hold only points or lines
+// have nothing we render: they must fail with "no triangle geometry" (and are listed here);
+// everything else must load.
+const std::set<std::string> kPointsAndLinesOnly = {
+    "Mesh_PrimitiveMode_00", "Mesh_PrimitiveMode_01", "Mesh_PrimitiveMode_02",
+    "Mesh_PrimitiveMode_03", "Mesh_PrimitiveMode_07", "Mesh_PrimitiveMode_08",
+    "Mesh_PrimitiveMode_09", "Mesh_PrimitiveMode_10"};
+
+TEST(GltfLoader, AssetGeneratorSuites) {
+  const auto files = gltfFilesUnder(models() / "glTF-Asset-Generator");
+  ASSERT_FALSE(files.empty());
+  for (const fs::path& file : files) {
+    SCOPED_TRACE(file.string());
+    const std::string stem = file.stem().string();
+    if (kPointsAndLinesOnly.count(stem) != 0) {
+      const Error error = loadError(file);
+      EXPECT_EQ(error.code(), ErrorCode::Invalid);
+      EXPECT_TRUE(contains(error.message(), "no triangle geometry")) << error.what();
+      continue;
+    }
+    try {
+      expectSane(loadFile(file), file.string());
+    } catch (const std::exception& error) {
+      ADD_FAILURE() << file << ": " << error.what();
+    }
+  }
+}
+
+// Strips and fans (indexed and not, every index type) become lists with the spec's winding: each
+// model is a quad facing +Z, two triangles.
+TEST(GltfLoader, PrimitiveModesBecomeCounterClockwiseLists) {
+  const fs::path suite = models() / "glTF-Asset-Generator" / "Mesh_PrimitiveMode";
+  for (const char* stem : {"04", "05", "06", "11", "12", "13", "14", "15"}) {
+    const fs::path file = suite / ("Mesh_PrimitiveMode_" + std::string(stem) + ".gltf");
+    SCOPED_TRACE(file.string());
+    const Scene scene = loadFile(file);
+    ASSERT_EQ(scene.triangleCount(), 2U);
+    const lgh::Primitive& primitive = scene.meshes.at(0).primitives.at(0);
+    for (std::size_t i = 0; i < primitive.indices.size(); i += 3) {
+      const glm::vec3 a = primitive.vertices[primitive.indices[i]].position;
+      const glm::vec3 b = primitive.vertices[primitive.indices[i + 1]].position;
+      const glm::vec3 c = primitive.vertices[primitive.indices[i + 2]].position;
+      const glm::vec3 world = glm::mat3(scene.instances.at(0).world) * glm::cross(b - a, c - a);
+      EXPECT_GT(world.z, 0.0F);
+      // No NORMAL in these: flat normals, along the face.
+      EXPECT_GT(glm::dot(primitive.vertices[primitive.indices[i]].normal, glm::cross(b - a, c - a)),
+                0.0F);
+    }
+  }
+}
+
+TEST(GltfLoader, PointsAndLinesAreSkippedWithWarning) {
+  // Cube.gltf of IncorrectVertexArrays mixes triangles and lines; the lines become warnings.
+  const Scene scene = loadFile(models() / "IncorrectVertexArrays" / "Cube.gltf");
+  EXPECT_TRUE(anyWarningContains(scene, "LINES"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Broken assets: per directory, the expected outcome.
+
+// wrongTypes/: members of the wrong JSON type. tinygltf would silently drop them; the schema
+// pre-check names the JSON pointer instead.
+TEST(GltfLoaderBroken, WrongTypesNameTheMember) {
+  const std::map<std::string, std::string> expected = {
+      {"badArray.gltf", "/meshes/0/primitives must be an array"},
+      {"badExtension.gltf", "/extensions/KHR_texture_transform must be an object"},
+      {"badNumber.gltf", "/materials/0/normalTexture/scale must be a number"},
+      {"badObject.gltf", "/materials/0/pbrMetallicRoughness must be an object"},
+      {"badString.gltf", "/name must be a string"},
+      {"badUint.gltf", "/index must be a non-negative integer"}};
+  const auto files = gltfFilesUnder(models() / "wrongTypes");
+  ASSERT_EQ(files.size(), expected.size());
+  for (const fs::path& file : files) {
+    SCOPED_TRACE(file.string());
+    const Error error = loadError(file);
+    EXPECT_EQ(error.code(), ErrorCode::Invalid);
+    EXPECT_EQ(error.field(), file.filename().string());
+    ASSERT_EQ(expected.count(file.filename().string()), 1U);
+    EXPECT_TRUE(contains(error.message(), expected.at(file.filename().string()))) << error.what();
+  }
+}
+
+TEST(GltfLoaderBroken, SchemaFailuresNameTheMember) {
+  const auto files = gltfFilesUnder(models() / "SchemaFailures");
+  ASSERT_FALSE(files.empty());
+  for (const fs::path& file : files) {
+    SCOPED_TRACE(file.string());
+    const Error error = loadError(file);
+    EXPECT_EQ(error.code(), ErrorCode::Invalid);
+    EXPECT_TRUE(contains(error.message(), "/scene must be a non-negative integer")) << error.what();
+  }
+}
+
+TEST(GltfLoaderBroken, IndexOutOfRangeIsAnError) {
+  const auto files = gltfFilesUnder(models() / "IndexOutOfRange");
+  ASSERT_EQ(files.size(), 2U);
+  for (const fs::path& file : files) {
+    SCOPED_TRACE(file.string());
+    const Error error = loadError(file);
+    EXPECT_EQ(error.code(), ErrorCode::Invalid);
+    EXPECT_TRUE(contains(error.message(), "out of range for 24 vertices")) << error.what();
+    EXPECT_TRUE(contains(error.message(), "mesh 0 ('Mesh')")) << error.what();
+  }
+}
+
+TEST(GltfLoaderBroken, MissingBinIsNotFoundNamingTheFile) {
+  const auto files = gltfFilesUnder(models() / "MissingBin");
+  ASSERT_FALSE(files.empty());
+  for (const fs::path& file : files) {
+    const Error error = loadError(file);
+    EXPECT_EQ(error.code(), ErrorCode::NotFound);
+    EXPECT_TRUE(contains(error.message(), "BoxTextured0.bin")) << error.what();
+  }
+}
+
+TEST(GltfLoaderBroken, InfinitePositionsAreAnError) {
+  const auto files = gltfFilesUnder(models() / "BoxWithInfinites-glTF-Binary");
+  ASSERT_FALSE(files.empty());
+  for (const fs::path& file : files) {
+    const Error error = loadError(file);
+    EXPECT_EQ(error.code(), ErrorCode::Invalid);
+    EXPECT_TRUE(contains(error.message(), "non-finite position")) << error.what();
+    EXPECT_TRUE(contains(error.message(), "accessor")) << error.what();
+  }
+}
+
+TEST(GltfLoaderBroken, RecursiveNodesAreAnError) {
+  const auto files = gltfFilesUnder(models() / "RecursiveNodes");
+  ASSERT_FALSE(files.empty());
+  for (const fs::path& file : files) {
+    const Error error = loadError(file);
+    EXPECT_EQ(error.code(), ErrorCode::Invalid);
+    EXPECT_TRUE(contains(error.message(), "cycle")) << error.what();
+    EXPECT_TRUE(contains(error.message(), "node 0")) << error.what();
+  }
+}
+
+// BoxBadNormals: zero/NaN normals are repaired (smooth normals) with a warning.
+TEST(GltfLoaderBroken, BadNormalsAreRepaired) {
+  const auto files = gltfFilesUnder(models() / "BoxBadNormals-glTF-Binary");
+  ASSERT_FALSE(files.empty());
+  for (const fs::path& file : files) {
+    const Scene scene = loadFile(file);
+    expectSane(scene, file.string());
+    EXPECT_TRUE(anyWarningContains(scene, "normals replaced")) << file;
+  }
+}
+
+// IncorrectVertexArrays: vertex/index counts that are not multiples of three (the trailing
+// partial triangle is dropped with a warning) and line primitives (skipped with a warning).
+TEST(GltfLoaderBroken, IncorrectVertexArraysAreRepaired) {
+  const auto files = gltfFilesUnder(models() / "IncorrectVertexArrays");
+  ASSERT_FALSE(files.empty());
+  for (const fs::path& file : files) {
+    const Scene scene = loadFile(file);
+    expectSane(scene, file.string());
+    EXPECT_TRUE(anyWarningContains(scene, "not a whole number of triangles")) << file;
+  }
+}
+
+// TestNoRootNode: no scene / a scene without nodes: nothing to draw.
+TEST(GltfLoaderBroken, NoRootNodeMeansNoGeometry) {
+  const auto files = gltfFilesUnder(models() / "TestNoRootNode");
+  ASSERT_EQ(files.size(), 2U);
+  for (const fs::path& file : files) {
+    const Error error = loadError(file);
+    EXPECT_EQ(error.code(), ErrorCode::Invalid);
+    EXPECT_EQ(error.message(), "the asset has no triangle geometry");
+  }
+}
+
+TEST(GltfLoaderBroken, RequiredUnsupportedExtensionsAreNamed) {
+  const Error draco = loadError(models() / "draco" / "2CylinderEngine.gltf");
+  EXPECT_EQ(draco.code(), ErrorCode::Invalid);
+  EXPECT_TRUE(contains(draco.message(), "KHR_draco_mesh_compression")) << draco.what();
+  const Error technique =
+      loadError(models() / "BoxTextured-glTF-techniqueWebGL" / "BoxTextured.gltf");
+  EXPECT_EQ(technique.code(), ErrorCode::Invalid);
+  EXPECT_TRUE(contains(technique.message(), "KHR_technique_webgl")) << technique.what();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Limits.
+
+TEST(GltfLoaderLimits, TriangleLimit) {
+  lgh::SceneLoadLimits limits;
+  limits.maxTriangles = 11;  // the box has 12
+  EXPECT_EQ(loadError(models() / "BoxTextured-glTF" / "BoxTextured.gltf", limits).code(),
+            ErrorCode::TooLarge);
+  limits.maxTriangles = 12;
+  EXPECT_EQ(loadFile(models() / "BoxTextured-glTF" / "BoxTextured.gltf", limits).triangleCount(),
+            12U);
+}
+
+TEST(GltfLoaderLimits, FileSizeLimit) {
+  lgh::SceneLoadLimits limits;
+  limits.maxFileBytes = 1000;
+  EXPECT_EQ(loadError(models() / "BoxTextured-glTF-Binary" / "BoxTextured.glb", limits).code(),
+            ErrorCode::TooLarge);
+  // Side files count too: the .gltf is under 4 kB, its texture is not.
+  limits.maxFileBytes = 2000;
+  const Error error = loadError(models() / "BoxTexcoords-glTF" / "boxTexcoords.gltf", limits);
+  EXPECT_EQ(error.code(), ErrorCode::TooLarge) << error.what();
+}
+
+TEST(GltfLoaderLimits, TextureSizeLimit) {
+  lgh::SceneLoadLimits limits;
+  limits.maxTextureSize = 16;
+  const Error error = loadError(models() / "BoxTextured-glTF" / "BoxTextured.gltf", limits);
+  EXPECT_EQ(error.code(), ErrorCode::TooLarge);
+  EXPECT_TRUE(contains(error.message(), "CesiumLogoFlat.png")) << error.what();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hand-made assets, held in memory.
+
+// Builds a glTF with one binary buffer ("model.bin") and its JSON document.
+class GltfBuilder {
+ public:
+  GltfBuilder() {
+    doc_ = {
+        {"asset", {{"version", "2.0"}}}, {"scene", 0}, {"scenes", {{{"nodes", json::array()}}}}};
+  }
+
+  json& doc() { return doc_; }
+
+  int addView(const void* data, std::size_t size) {
+    while (bin_.size() % 4 != 0) bin_.push_back(0);
+    const auto* bytes = static_cast<const std::uint8_t*>(data);
+    doc_["bufferViews"].push_back(
+        {{"buffer", 0}, {"byteOffset", bin_.size()}, {"byteLength", size}});
+    bin_.insert(bin_.end(), bytes, bytes + size);
+    return static_cast<int>(doc_["bufferViews"].size()) - 1;
+  }
+
+  int addAccessor(json accessor) {
+    doc_["accessors"].push_back(std::move(accessor));
+    return static_cast<int>(doc_["accessors"].size()) - 1;
+  }
+
+  int addFloats(const std::vector<float>& values, const char* type, std::size_t count) {
+    const int view = addView(values.data(), values.size() * sizeof(float));
+    return addAccessor(
+        {{"bufferView", view}, {"componentType", 5126}, {"count", count}, {"type", type}});
+  }
+
+  // A one-primitive mesh from float positions (VEC3); returns the mesh index.
+  int addMesh(const std::vector<float>& positions, json attributes = json::object(), int mode = 4) {
+    attributes["POSITION"] = addFloats(positions, "VEC3", positions.size() / 3);
+    doc_["meshes"].push_back({{"primitives", {{{"attributes", attributes}, {"mode", mode}}}}});
+    return static_cast<int>(doc_["meshes"].size()) - 1;
+  }
+
+  int addNode(json node, bool root = true) {
+    doc_["nodes"].push_back(std::move(node));
+    const int index = static_cast<int>(doc_["nodes"].size()) - 1;
+    if (root) doc_["scenes"][0]["nodes"].push_back(index);
+    return index;
+  }
+
+  std::map<std::string, std::vector<std::uint8_t>> files() {
+    json doc = doc_;
+    doc["buffers"] = {
+        {{"uri", "model.bin"}, {"byteLength", std::max<std::size_t>(bin_.size(), 4)}}};
+    std::vector<std::uint8_t> bin = bin_;
+    bin.resize(std::max<std::size_t>(bin.size(), 4), 0);
+    const std::string text = doc.dump();
+    return {{"model.gltf", {text.begin(), text.end()}}, {"model.bin", bin}};
+  }
+
+  Scene load() { return lgh::loadGltfFromMemory("model.gltf", files()); }
+
+  Error loadError() {
+    try {
+      load();
+    } catch (const Error& error) {
+      return error;
+    }
+    ADD_FAILURE() << "loaded";
+    return Error(ErrorCode::Internal, "loaded");
+  }
+
+ private:
+  json doc_;
+  std::vector<std::uint8_t> bin_;
+};
+
+const std::vector<float> kTriangle = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+
+TEST(GltfLoaderFeatures, NodeHierarchyComposesTransforms) {
+  GltfBuilder gltf;
+  const int mesh = gltf.addMesh(kTriangle);
+  const int child = gltf.addNode({{"mesh", mesh}, {"translation", {0, 0, 5}}}, false);
+  // Parent: translate (1,0,0), rotate 90 degrees about Z, scale 2.
+  const float s = std::sqrt(0.5F);
+  gltf.addNode({{"children", {child}},
+                {"translation", {1, 0, 0}},
+                {"rotation", {0, 0, s, s}},
+                {"scale", {2, 2, 2}}});
+  // And a matrix node: translate (0, 10, 0), column-major.
+  gltf.addNode({{"mesh", mesh}, {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 10, 0, 1}}});
+  const Scene scene = gltf.load();
+  ASSERT_EQ(scene.instances.size(), 2U);
+  ASSERT_EQ(scene.meshes.size(), 1U);  // one mesh, instanced twice
+  EXPECT_EQ(scene.triangleCount(), 2U);
+  const glm::mat4& world = scene.instances[0].world;
+  // Local (1,0,0) of the child -> (1,0,5) -> scaled (2,0,10) -> rotated (0,2,10) -> (1,2,10).
+  const glm::vec3 p(world * glm::vec4(1, 0, 0, 1));
+  EXPECT_NEAR(p.x, 1.0F, 1e-5F);
+  EXPECT_NEAR(p.y, 2.0F, 1e-5F);
+  EXPECT_NEAR(p.z, 10.0F, 1e-5F);
+  EXPECT_EQ(glm::vec3(scene.instances[1].world[3]), glm::vec3(0, 10, 0));
+  EXPECT_NEAR(scene.bounds.max.z, 10.0F, 1e-5F);
+}
+
+TEST(GltfLoaderFeatures, WithoutScenesAllParentlessNodesAreRoots) {
+  GltfBuilder gltf;
+  const int mesh = gltf.addMesh(kTriangle);
+  const int child = gltf.addNode({{"mesh", mesh}}, false);
+  gltf.addNode({{"children", {child}}}, false);
+  gltf.addNode({{"mesh", mesh}}, false);
+  gltf.doc().erase("scenes");
+  gltf.doc().erase("scene");
+  const Scene scene = gltf.load();
+  EXPECT_EQ(scene.instances.size(), 2U);  // the child once (via its parent), the loose node once
+}
+
+TEST(GltfLoaderFeatures, DeepHierarchyIsAnError) {
+  GltfBuilder gltf;
+  const int mesh = gltf.addMesh(kTriangle);
+  int previous = gltf.addNode({{"mesh", mesh}}, false);
+  for (int i = 0; i < 70; ++i) previous = gltf.addNode({{"children", {previous}}}, false);
+  gltf.doc()["scenes"][0]["nodes"] = {previous};
+  const Error error = gltf.loadError();
+  EXPECT_EQ(error.code(), ErrorCode::Invalid);
+  EXPECT_TRUE(contains(error.message(), "deeper than 64")) << error.what();
+}
+
+TEST(GltfLoaderFeatures, SharedSubtreesCannotExplode) {
+  GltfBuilder gltf;
+  const int mesh = gltf.addMesh(kTriangle);
+  int previous = gltf.addNode({{"mesh", mesh}}, false);
+  // Each level references the one below twice: 2^40 leaf instances if expanded.
+  for (int i = 0; i < 40; ++i) previous = gltf.addNode({{"children", {previous, previous}}}, false);
+  gltf.doc()["scenes"][0]["nodes"] = {previous};
+  EXPECT_EQ(gltf.loadError().code(), ErrorCode::TooLarge);
+}
+
+TEST(GltfLoaderFeatures, PunctualLightsArePlacedByTheirNodes) {
+  GltfBuilder gltf;
+  gltf.addNode({{"mesh", gltf.addMesh(kTriangle)}});
+  gltf.doc()["extensionsUsed"] = {"KHR_lights_punctual"};
+  gltf.doc()["extensions"]["KHR_lights_punctual"]["lights"] = {
+      {{"type", "point"}, {"color", {1, 0.5, 0.25}}, {"intensity", 5}, {"range", 10}},
+      {{"type", "spot"},
+       {"intensity", 2},
+       {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}}}},
+      {{"type", "directional"}, {"intensity", 3}}};
+  auto lightNode = [](int light) { return json{{"KHR_lights_punctual", {{"light", light}}}}; };
+  const float s = std::sqrt(0.5F);
+  gltf.addNode({{"translation", {1, 2, 3}}, {"extensions", lightNode(0)}});
+  gltf.addNode(
+      {{"translation", {0, 4, 0}}, {"rotation", {-s, 0, 0, s}}, {"extensions", lightNode(1)}});
+  gltf.addNode({{"extensions", lightNode(2)}});
+  const Scene scene = gltf.load();
+  EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
+  ASSERT_EQ(scene.lights.size(), 3U);
+  const lgh::LightDesc& point = scene.lights[0];
+  EXPECT_EQ(point.type, lgh::LightType::Point);
+  EXPECT_EQ(point.position, (std::array<float, 3>{1, 2, 3}));
+  EXPECT_EQ(point.color, (std::array<float, 3>{1, 0.5F, 0.25F}));
+  EXPECT_EQ(point.intensity, 5.0F);
+  EXPECT_EQ(point.range, 10.0F);
+  EXPECT_EQ(point.attenuation, (std::array<float, 3>{0, 0, 1}));
+  const lgh::LightDesc& spot = scene.lights[1];
+  EXPECT_EQ(spot.type, lgh::LightType::Spot);
+  EXPECT_NEAR(spot.direction[1], -1.0F, 1e-5F);  // -Z turned -90 degrees about X: down
+  EXPECT_NEAR(spot.innerConeAngle, 0.2F, 1e-6F);
+  EXPECT_NEAR(spot.outerConeAngle, 0.5F, 1e-6F);
+  const lgh::LightDesc& sun = scene.lights[2];
+  EXPECT_EQ(sun.type, lgh::LightType::Directional);
+  EXPECT_EQ(sun.direction, (std::array<float, 3>{0, 0, -1}));
+}
+
+TEST(GltfLoaderFeatures, MaterialFactorsSamplersAndEmissiveStrength) {
+  GltfBuilder gltf;
+  json attributes;
+  attributes["TEXCOORD_0"] = gltf.addFloats({0, 0, 1, 0, 0, 1}, "VEC2", 3);
+  const int mesh = gltf.addMesh(kTriangle, attributes);
+  gltf.doc()["meshes"][mesh]["primitives"][0]["material"] = 0;
+  gltf.addNode({{"mesh", mesh}});
+  // A 1x1 PNG, encoded by our own image I/O.
+  lgh::Image8 pixel;
+  pixel.width = pixel.height = 1;
+  pixel.pixels = {255, 0, 0, 255};
+  const std::vector<std::uint8_t> png = lgh::image_io::encodePng(pixel);
+  const int view = gltf.addView(png.data(), png.size());
+  gltf.doc()["images"] = {{{"bufferView", view}, {"mimeType", "image/png"}}};
+  gltf.doc()["samplers"] = {
+      {{"magFilter", 9728}, {"minFilter", 9984}, {"wrapS", 33071}, {"wrapT", 33648}}};
+  gltf.doc()["textures"] = {{{"source", 0}, {"sampler", 0}}};
+  gltf.doc()["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+  gltf.doc()["materials"] = {
+      {{"name", "m"},
+       {"pbrMetallicRoughness",
+        {{"baseColorFactor", {0.5, 0.25, 1, 0.5}},
+         {"metallicFactor", 0.1},
+         {"roughnessFactor", 0.7},
+         {"baseColorTexture", {{"index", 0}}}}},
+       {"normalTexture", {{"index", 0}, {"scale", 0.5}, {"texCoord", 1}}},
+       {"occlusionTexture", {{"index", 0}, {"strength", 0.25}}},
+       {"emissiveTexture", {{"index", 0}}},
+       {"emissiveFactor", {1, 0.5, 0}},
+       {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}}}},
+       {"alphaMode", "MASK"},
+       {"alphaCutoff", 0.3},
+       {"doubleSided", true}}};
+  const Scene scene = gltf.load();
+  ASSERT_EQ(scene.materials.size(), 1U);
+  const lgh::Material& m = scene.materials[0];
+  EXPECT_EQ(m.name, "m");
+  EXPECT_EQ(m.baseColorFactor, glm::vec4(0.5F, 0.25F, 1.0F, 0.5F));
+  EXPECT_FLOAT_EQ(m.metallicFactor, 0.1F);
+  EXPECT_FLOAT_EQ(m.roughnessFactor, 0.7F);
+  EXPECT_EQ(m.emissiveFactor, glm::vec3(4.0F, 2.0F, 0.0F));
+  EXPECT_FLOAT_EQ(m.normalScale, 0.5F);
+  EXPECT_FLOAT_EQ(m.occlusionStrength, 0.25F);
+  EXPECT_EQ(m.alphaMode, lgh::AlphaMode::Mask);
+  EXPECT_FLOAT_EQ(m.alphaCutoff, 0.3F);
+  EXPECT_TRUE(m.doubleSided);
+  EXPECT_EQ(m.normalTexture.texCoord, 1);
+  ASSERT_TRUE(m.baseColorTexture.valid());
+  EXPECT_EQ(m.baseColorTexture.sampler.magFilter, 9728);
+  EXPECT_EQ(m.baseColorTexture.sampler.minFilter, 9984);
+  EXPECT_EQ(m.baseColorTexture.sampler.wrapS, 33071);
+  EXPECT_EQ(m.baseColorTexture.sampler.wrapT, 33648);
+  // One image, shared by all five texture slots.
+  ASSERT_EQ(scene.images.size(), 1U);
+  EXPECT_EQ(m.emissiveTexture.image, m.baseColorTexture.image);
+  EXPECT_EQ(scene.images[0].pixels, (std::vector<std::uint8_t>{255, 0, 0, 255}));
+}
+
+TEST(GltfLoaderFeatures, UndecodableImageFailsOnlyWhenUsed) {
+  GltfBuilder gltf;
+  gltf.addNode({{"mesh", gltf.addMesh(kTriangle)}});
+  const std::string garbage = "this is not an image at all";
+  const int view = gltf.addView(garbage.data(), garbage.size());
+  gltf.doc()["images"] = {{{"bufferView", view}, {"mimeType", "image/png"}, {"name", "broken"}}};
+  const Scene unused = gltf.load();
+  EXPECT_TRUE(anyWarningContains(unused, "image 0")) << "no warning";
+
+  gltf.doc()["textures"] = {{{"source", 0}}};
+  gltf.doc()["materials"] = {{{"emissiveTexture", {{"index", 0}}}}};
+  gltf.doc()["meshes"][0]["primitives"][0]["material"] = 0;
+  const Error error = gltf.loadError();
+  EXPECT_EQ(error.code(), ErrorCode::Invalid);
+  EXPECT_TRUE(contains(error.message(), "image 0")) << error.what();
+  EXPECT_TRUE(contains(error.message(), "broken")) << error.what();
+}
+
+TEST(GltfLoaderFeatures, IndexTypesVertexColorsAndNormalizedTexcoords) {
+  GltfBuilder gltf;
+  const std::vector<float> quad = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  const std::uint8_t colors[16] = {255, 0, 0,   255, 0,   255, 0,   255,
+                                   0,   0, 255, 255, 255, 255, 255, 0};
+  const std::uint16_t uvs[8] = {0, 65535, 65535, 65535, 65535, 0, 0, 0};
+  const std::uint8_t indices[6] = {0, 1, 2, 0, 2, 3};
+  json attributes;
+  attributes["COLOR_0"] = gltf.addAccessor({{"bufferView", gltf.addView(colors, 16)},
+                                            {"componentType", 5121},
+                                            {"normalized", true},
+                                            {"count", 4},
+                                            {"type", "VEC4"}});
+  attributes["TEXCOORD_0"] = gltf.addAccessor({{"bufferView", gltf.addView(uvs, 16)},
+                                               {"componentType", 5123},
+                                               {"normalized", true},
+                                               {"count", 4},
+                                               {"type", "VEC2"}});
+  const int mesh = gltf.addMesh(quad, attributes);
+  gltf.doc()["meshes"][mesh]["primitives"][0]["indices"] =
+      gltf.addAccessor({{"bufferView", gltf.addView(indices, 6)},
+                        {"componentType", 5121},
+                        {"count", 6},
+                        {"type", "SCALAR"}});
+  gltf.addNode({{"mesh", mesh}});
+  const Scene scene = gltf.load();
+  const lgh::Primitive& p = scene.meshes.at(0).primitives.at(0);
+  ASSERT_EQ(p.vertices.size(), 6U);  // no NORMAL: unwelded for flat normals
+  EXPECT_EQ(p.vertices[0].color, glm::vec4(1, 0, 0, 1));
+  EXPECT_EQ(p.vertices[0].uv0, glm::vec2(0, 1));
+  EXPECT_EQ(p.vertices[0].normal, glm::vec3(0, 0, 1));
+  // Generated tangent: u grows along +X; v grows along -Y, so the bitangent (up) is +Y: w = +1.
+  EXPECT_NEAR(p.vertices[0].tangent.x, 1.0F, 1e-5F);
+  EXPECT_EQ(p.vertices[0].tangent.w, 1.0F);
+}
+
+TEST(GltfLoaderFeatures, WrongAttributeFormatNamesMeshAndAttribute) {
+  GltfBuilder gltf;
+  json attributes;
+  const std::uint8_t normals[9] = {};
+  attributes["NORMAL"] = gltf.addAccessor({{"bufferView", gltf.addView(normals, 9)},
+                                           {"componentType", 5121},
+                                           {"count", 3},
+                                           {"type", "VEC3"}});
+  const int mesh = gltf.addMesh(kTriangle, attributes);
+  gltf.doc()["meshes"][mesh]["name"] = "Teapot";
+  gltf.addNode({{"mesh", mesh}});
+  const Error error = gltf.loadError();
+  EXPECT_EQ(error.code(), ErrorCode::Invalid);
+  EXPECT_TRUE(contains(error.message(), "'Teapot'")) << error.what();
+  EXPECT_TRUE(contains(error.message(), "NORMAL")) << error.what();
+  EXPECT_TRUE(contains(error.message(), "UNSIGNED_BYTE")) << error.what();
+}
+
+TEST(GltfLoaderFeatures, AccessorPastItsBufferViewIsAnError) {
+  GltfBuilder gltf;
+  const int mesh = gltf.addMesh(kTriangle);
+  gltf.doc()["accessors"][0]["count"] = 4;  // 48 bytes from a 36-byte view
+  gltf.addNode({{"mesh", mesh}});
+  const Error error = gltf.loadError();
+  EXPECT_EQ(error.code(), ErrorCode::Invalid);
+  EXPECT_TRUE(contains(error.message(), "past the end of bufferView")) << error.what();
+}
+
+TEST(GltfLoaderFeatures, BufferViewPastItsBufferIsAnError) {
+  GltfBuilder gltf;
+  const int mesh = gltf.addMesh(kTriangle);
+  gltf.doc()["bufferViews"][0]["byteOffset"] = 4;  // 4 + 36 > the 36-byte buffer
+  gltf.addNode({{"mesh", mesh}});
+  const Error error = gltf.loadError();
+  EXPECT_EQ(error.code(), ErrorCode::Invalid);
+  EXPECT_TRUE(contains(error.message(), "outside buffer")) << error.what();
+}
+
+TEST(GltfLoaderFeatures, SparseAccessorsAreApplied) {
+  GltfBuilder gltf;
+  // Base: no bufferView, so all zeros; the sparse part sets vertices 1 and 2.
+  const std::uint16_t sparseIndices[2] = {1, 2};
+  const float sparseValues[6] = {1, 0, 0, 0, 1, 0};
+  const int indicesView = gltf.addView(sparseIndices, sizeof(sparseIndices));
+  const int valuesView = gltf.addView(sparseValues, sizeof(sparseValues));
+  const int positions =
+      gltf.addAccessor({{"componentType", 5126},
+                        {"count", 3},
+                        {"type", "VEC3"},
+                        {"sparse",
+                         {{"count", 2},
+                          {"indices", {{"bufferView", indicesView}, {"componentType", 5123}}},
+                          {"values", {{"bufferView", valuesView}}}}}});
+  gltf.doc()["meshes"].push_back({{"primitives", {{{"attributes", {{"POSITION", positions}}}}}}});
+  gltf.addNode({{"mesh", 0}});
+  const Scene scene = gltf.load();
+  EXPECT_EQ(scene.bounds.max, glm::vec3(1, 1, 0));
+  EXPECT_EQ(scene.bounds.min, glm::vec3(0, 0, 0));
+}
+
+TEST(GltfLoaderFeatures, MeshQuantizationAllowsIntegerPositions) {
+  GltfBuilder gltf;
+  const std::int16_t positions[12] = {0, 0, 0, 0, 32767, 0, 0, 0, 0, 32767, 0, 0};  // padded to 8
+  const int view = gltf.addView(positions, sizeof(positions));
+  const int accessor = gltf.addAccessor({{"bufferView", view},
+                                         {"componentType", 5122},
+                                         {"normalized", true},
+                                         {"count", 3},
+                                         {"type", "VEC3"}});
+  gltf.doc()["bufferViews"][view]["byteStride"] = 8;
+  gltf.doc()["meshes"].push_back({{"primitives", {{{"attributes", {{"POSITION", accessor}}}}}}});
+  gltf.addNode({{"mesh", 0}});
+  // Without the extension: an error naming the format.
+  EXPECT_TRUE(contains(gltf.loadError().message(), "SHORT")) << "accepted";
+  gltf.doc()["extensionsUsed"] = {"KHR_mesh_quantization"};
+  gltf.doc()["extensionsRequired"] = {"KHR_mesh_quantization"};
+  const Scene scene = gltf.load();
+  EXPECT_NEAR(scene.bounds.max.x, 1.0F, 1e-6F);
+  EXPECT_NEAR(scene.bounds.max.y, 1.0F, 1e-6F);
+}
+
+TEST(GltfLoaderFeatures, DegenerateUvsGiveFiniteTangents) {
+  GltfBuilder gltf;
+  json attributes;
+  attributes["TEXCOORD_0"] = gltf.addFloats({0.5F, 0.5F, 0.5F, 0.5F, 0.5F, 0.5F}, "VEC2", 3);
+  attributes["NORMAL"] = gltf.addFloats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);
+  gltf.addNode({{"mesh", gltf.addMesh(kTriangle, attributes)}});
+  const Scene scene = gltf.load();
+  for (const lgh::Vertex& v : scene.meshes[0].primitives[0].vertices) {
+    EXPECT_NEAR(glm::length(glm::vec3(v.tangent)), 1.0F, 1e-5F);
+    EXPECT_NEAR(glm::dot(glm::vec3(v.tangent), v.normal), 0.0F, 1e-5F);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Mutated GLBs: each load succeeds or throws lgh::Error; nothing else, no crash.
+
+void fuzz(const fs::path& file, std::uint32_t seed, int rounds) {
+  const std::vector<std::uint8_t> original = lgh::image_io::readFile(file);
+  ASSERT_GT(original.size(), 100U);
+  std::mt19937 random(seed);
+  int loaded = 0;
+  for (int round = 0; round < rounds; ++round) {
+    std::vector<std::uint8_t> bytes = original;
+    const std::size_t position = random() % bytes.size();
+    if (round % 4 == 3) {
+      bytes.resize(position);  // truncate
+    } else {
+      const int flips = 1 + static_cast<int>(random() % 4);
+      for (int i = 0; i < flips; ++i) {
+        const std::size_t at = (position + random() % 64) % bytes.size();
+        bytes[at] ^= static_cast<std::uint8_t>(1 + random() % 255);
+      }
+    }
+    try {
+      const Scene scene = lgh::loadGlbBytes(bytes, "fuzz.glb");
+      EXPECT_GT(scene.triangleCount(), 0U);
+      ++loaded;
+    } catch (const Error& error) {
+      EXPECT_FALSE(error.message().empty()) << "round " << round;
+    } catch (const std::exception& error) {
+      ADD_FAILURE() << "round " << round << " (position " << position
+                    << ") threw a non-lgh exception: " << error.what();
+    }
+  }
+  // Flips inside the texture or padding leave a loadable file: some rounds must load.
+  EXPECT_GT(loaded, 0);
+}
+
+TEST(GltfLoaderFuzz, MutatedTexturedBox) {
+  fuzz(models() / "BoxTextured-glTF-Binary" / "BoxTextured.glb", 20240601U, 200);
+}
+
+TEST(GltfLoaderFuzz, MutatedBadNormalsBox) {
+  fuzz(models() / "BoxBadNormals-glTF-Binary" / "BoxBadNormals.glb", 7U, 200);
+}
+
+}  // namespace

@@ -1,0 +1,94 @@
+// The per-pass timing table: lookups, the GPU total, the terminal table and the JSON form that
+// proto/timings.schema.json describes.
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "lgh/timing.hpp"
+
+namespace lgh {
+namespace {
+
+TimingTable sampleTable() {
+  TimingTable table;
+  table.add("scene_load", TimingRow::Clock::Cpu, 12.5);
+  table.add("gbuffer", TimingRow::Clock::Gpu, 1.25);
+  table.add("direct_lighting", TimingRow::Clock::Gpu, 0.75);
+  return table;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> result;
+  std::istringstream stream(text);
+  for (std::string line; std::getline(stream, line);) result.push_back(line);
+  return result;
+}
+
+TEST(TimingTable, AddKeepsOrder) {
+  const TimingTable table = sampleTable();
+  ASSERT_EQ(table.rows.size(), 3U);
+  EXPECT_EQ(table.rows[0].name, "scene_load");
+  EXPECT_EQ(table.rows[0].clock, TimingRow::Clock::Cpu);
+  EXPECT_DOUBLE_EQ(table.rows[0].milliseconds, 12.5);
+  EXPECT_EQ(table.rows[2].name, "direct_lighting");
+}
+
+TEST(TimingTable, GetReturnsMillisecondsOrMinusOne) {
+  const TimingTable table = sampleTable();
+  EXPECT_DOUBLE_EQ(table.get("gbuffer"), 1.25);
+  EXPECT_DOUBLE_EQ(table.get("scene_load"), 12.5);
+  EXPECT_DOUBLE_EQ(table.get("missing"), -1.0);
+  EXPECT_DOUBLE_EQ(TimingTable{}.get("gbuffer"), -1.0);
+}
+
+TEST(TimingTable, GpuTotalSumsOnlyGpuRows) {
+  EXPECT_DOUBLE_EQ(sampleTable().gpuTotal(), 2.0);
+  EXPECT_DOUBLE_EQ(TimingTable{}.gpuTotal(), 0.0);
+}
+
+TEST(TimingTable, FormatIsAlignedWithTotalRow) {
+  const std::vector<std::string> rows = lines(sampleTable().format());
+  ASSERT_EQ(rows.size(), 5U);  // header, three rows, total
+  EXPECT_TRUE(rows[0].starts_with("pass")) << rows[0];
+  EXPECT_NE(rows[1].find("scene_load"), std::string::npos);
+  EXPECT_NE(rows[1].find("cpu"), std::string::npos);
+  EXPECT_NE(rows[1].find("12.500"), std::string::npos);
+  EXPECT_NE(rows[2].find("gpu"), std::string::npos);
+  EXPECT_TRUE(rows[4].starts_with("total")) << rows[4];
+  EXPECT_NE(rows[4].find("2.000"), std::string::npos);
+  // Aligned: every line has the same width, the numbers right-aligned in the last column.
+  for (const std::string& row : rows) EXPECT_EQ(row.size(), rows[0].size()) << row;
+  EXPECT_EQ(rows[1].substr(rows[1].size() - 6), "12.500");
+  EXPECT_EQ(rows[2].substr(rows[2].size() - 6), " 1.250");
+}
+
+TEST(TimingTable, FormatWidensForLongNames) {
+  TimingTable table;
+  table.add("a_very_long_pass_name_indeed", TimingRow::Clock::Gpu, 100.0);
+  const std::vector<std::string> rows = lines(table.format());
+  ASSERT_EQ(rows.size(), 3U);
+  for (const std::string& row : rows) EXPECT_EQ(row.size(), rows[0].size()) << row;
+}
+
+TEST(TimingTable, EmptyTableFormatsHeaderAndZeroTotal) {
+  const std::vector<std::string> rows = lines(TimingTable{}.format());
+  ASSERT_EQ(rows.size(), 2U);
+  EXPECT_NE(rows[1].find("0.000"), std::string::npos);
+}
+
+TEST(TimingTable, ToJsonIsArrayOfPassClockMs) {
+  const nlohmann::json expected = nlohmann::json::parse(R"([
+    {"pass": "scene_load", "clock": "cpu", "ms": 12.5},
+    {"pass": "gbuffer", "clock": "gpu", "ms": 1.25},
+    {"pass": "direct_lighting", "clock": "gpu", "ms": 0.75}
+  ])");
+  EXPECT_EQ(sampleTable().toJson(), expected);
+  EXPECT_EQ(TimingTable{}.toJson(), nlohmann::json::array());
+}
+
+}  // namespace
+}  // namespace lgh
