@@ -140,12 +140,17 @@ class EglContext final : public GlContext {
 
 std::vector<EGLDeviceEXT> queryEglDevices() {
   const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  if (!hasExtension(clientExtensions, "EGL_EXT_platform_device") ||
-      !hasExtension(clientExtensions, "EGL_EXT_device_enumeration")) {
+  // NVIDIA's EGL (through glvnd) advertises EGL_EXT_device_base, the union of
+  // EGL_EXT_device_enumeration and EGL_EXT_device_query, instead of the two separately.
+  const bool enumeration = hasExtension(clientExtensions, "EGL_EXT_device_enumeration") ||
+                           hasExtension(clientExtensions, "EGL_EXT_device_base");
+  if (!hasExtension(clientExtensions, "EGL_EXT_platform_device") || !enumeration) {
     throw Error(ErrorCode::Unavailable,
-                "EGL has no EGL_EXT_platform_device/EGL_EXT_device_enumeration (is the vendor's "
-                "EGL ICD JSON installed? In containers, NVIDIA_DRIVER_CAPABILITIES must include "
-                "'graphics')");
+                fmt::format("EGL has no EGL_EXT_platform_device with EGL_EXT_device_enumeration "
+                            "or EGL_EXT_device_base (is the vendor's EGL ICD JSON installed? In "
+                            "containers, NVIDIA_DRIVER_CAPABILITIES must include 'graphics'); "
+                            "client extensions: {}",
+                            clientExtensions != nullptr ? clientExtensions : "none"));
   }
   EGLint count = 0;
   if (eglQueryDevicesEXT(0, nullptr, &count) != EGL_TRUE) failEgl("eglQueryDevicesEXT");
@@ -263,7 +268,9 @@ std::unique_ptr<GlContext> GlContext::create(const RendererOptions& options) {
                    context->info().glVersion);
       return context;
     } catch (const Error& error) {
-      if (options.backend != ContextBackend::Auto || options.requireGpu) throw;
+      // --require-gpu still falls back between paths (NVIDIA also offers surfaceless EGL);
+      // checkRequirements refuses whichever path lands on a software renderer.
+      if (options.backend != ContextBackend::Auto) throw;
       spdlog::warn("context path {} failed: {}; falling back", contextBackendName(backend),
                    error.what());
       failures += fmt::format("{}: {}; ", contextBackendName(backend), error.what());
