@@ -54,7 +54,11 @@ std::string eglErrorName(EGLint error) {
 void GLAPIENTRY debugCallback(GLenum /*source*/, GLenum type, GLuint id, GLenum severity,
                               GLsizei /*length*/, const GLchar* message, const void* /*user*/) {
   if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
-  auto level = type == GL_DEBUG_TYPE_ERROR ? spdlog::level::err : spdlog::level::warn;
+  // Performance hints (NVIDIA reports every read-back's buffer migration) would drown the log
+  // at warning level; they stay visible with --log-level debug.
+  auto level = type == GL_DEBUG_TYPE_ERROR         ? spdlog::level::err
+               : type == GL_DEBUG_TYPE_PERFORMANCE ? spdlog::level::debug
+                                                   : spdlog::level::warn;
   spdlog::log(level, "GL debug [{}]: {}", id, message);
 }
 
