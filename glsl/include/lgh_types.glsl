@@ -84,6 +84,14 @@ struct LghLevelTable {
 #define LGH_TAIL_VERTICES 4096u  // auto levels: candidates this small are left to one work group
 #define LGH_PYRAMID_STEPS 3u     // at most this many pyramid dispatches (more is left to the tail)
 #define LGH_MAX_COORD 1.0e30        // |position| and intensity limit: sums stay finite in float
+// Binned S1 (lgh_bin_*.comp): tiles of T^3 S1 cells, accumulated in shared memory over their
+// (T+1)^3 vertices by one work group per chunk of LGH_BIN_CHUNK lights. T per atomics mode, so
+// that the tile's accumulators stay under 32 KB (the GL minimum of shared memory): 9 floats x 9^3
+// = 26.2 KB, 9 x 2 words x 7^3 = 24.7 KB.
+#define LGH_BIN_TILE_FLOAT 8u
+#define LGH_BIN_TILE_FIXED 6u
+#define LGH_BIN_CHUNK 1024u
+#define LGH_BIN_SCAN_ITEMS 16u  // tile counts per thread in the one-group scan
 
 // Dispatch-indirect slots (uvec4: xyz = work groups, w = items, read by the kernel).
 #define LGH_SLOT_PYRAMID 0  // + step (0..2)
@@ -93,7 +101,8 @@ struct LghLevelTable {
 #define LGH_SLOT_GATHER_ALL 9
 #define LGH_SLOT_GATHER 8   // + level (2..16): 10..24
 #define LGH_SLOT_SCATTER 24  // + level (1..16): 25..40
-#define LGH_DISPATCH_SLOTS 41
+#define LGH_SLOT_BIN_ACCUM 41  // binned S1: one group per (tile, chunk) work item
+#define LGH_DISPATCH_SLOTS 42
 
 struct LghBoundsPartial {
   vec4 minMaxC;  // xyz: min position, w: max intensity component
@@ -125,7 +134,15 @@ struct LghState {
   uint boundsDone;
   uint markDone;
   uint compactDone;
-  uint pad2;
+  uint binDone;
+  uvec4 binTiles;  // binned S1: xyz = tiles per axis, w = tiles (0 without levels)
+};
+
+// A light of the binned S1, in tile order: its level-1 grid coordinate as every kernel computes
+// it (so the accumulation uses the very t its tile was chosen by), luminance and rgb. 32 bytes.
+struct LghBinLight {
+  vec4 tLum;  // xyz: t (lghGridCoordinate at level 1); w: luminance
+  vec4 rgbPad;
 };
 
 // Kernels whose last work group reads what the other groups wrote (lgh_bounds.comp,
@@ -156,6 +173,17 @@ layout(std430, binding = 10) writeonly buffer LghDraws { uvec4 draws[]; };
 // One bit per dense vertex: set by whoever accumulates into it, so the compaction reads (and
 // clears) only touched vertices instead of streaming the whole dense grid twice.
 layout(std430, binding = 11) buffer LghTouched { uint touched[]; };
+// Binned S1 (lgh_bin_*.comp, which define LGH_BINNED: Mesa counts declared blocks against the
+// limit of 16 per compute shader, used or not). binCount: lights per tile, zero between builds
+// (the bin scatter counts every light back down). binStart: tiles + 1 exclusive offsets.
+// binItems: (tile, chunk) work items. binLights aliases the S1 records' buffer, which is only
+// written after S1.
+#ifdef LGH_BINNED
+layout(std430, binding = 12) LGH_SHARED_WRITES buffer LghBinCount { uint binCount[]; };
+layout(std430, binding = 13) LGH_SHARED_WRITES buffer LghBinStart { uint binStart[]; };
+layout(std430, binding = 14) LGH_SHARED_WRITES buffer LghBinItems { uvec2 binItems[]; };
+layout(std430, binding = 6) buffer LghBinLights { LghBinLight binLights[]; };
+#endif
 
 // Non-finite test on the bit pattern: drivers may fold isnan/isinf away under fast math.
 bool lghFinite(float x) { return (floatBitsToUint(x) & 0x7f800000u) != 0x7f800000u; }
@@ -264,7 +292,8 @@ bool lghFinishLastGroup(uint counterIndex) {
     uint done;
     if (counterIndex == 0u) done = atomicAdd(st.boundsDone, 1u);
     else if (counterIndex == 1u) done = atomicAdd(st.markDone, 1u);
-    else done = atomicAdd(st.compactDone, 1u);
+    else if (counterIndex == 2u) done = atomicAdd(st.compactDone, 1u);
+    else done = atomicAdd(st.binDone, 1u);
     s_lghLast = done == groups - 1u;
   }
   barrier();
@@ -273,7 +302,8 @@ bool lghFinishLastGroup(uint counterIndex) {
   if (gl_LocalInvocationID.x == 0u) {
     if (counterIndex == 0u) st.boundsDone = 0u;
     else if (counterIndex == 1u) st.markDone = 0u;
-    else st.compactDone = 0u;
+    else if (counterIndex == 2u) st.compactDone = 0u;
+    else st.binDone = 0u;
   }
   return true;
 }
@@ -352,9 +382,12 @@ void lghClear(uint vertex) {
   for (uint k = 0u; k < 9u; ++k) accum[vertex * 9u + k] = 0.0;
 }
 #else
-void lghAdd(uint slot, float value) {
-  float x = floor(value * lgh.fixedScale + 0.5);
-  if (x == 0.0) return;
+// value * fixedScale rounded to an integer, as a 64-bit two's complement (lo, hi); (0, 0) for 0.
+// `precise`: no fused multiply-add, so every kernel rounds a value alike (the binned and the
+// direct S1 give bit-identical sums).
+uvec2 lghFixedSplit(float value) {
+  precise float x = floor(value * lgh.fixedScale + 0.5);
+  if (x == 0.0) return uvec2(0u);
   // |x| = hi * 2^32 + lo exactly (|x| carries at most 24 significant bits, so both parts do);
   // then the 64-bit two's complement for negative x (2^32 - lo would not fit a float).
   float magnitude = abs(x);
@@ -365,10 +398,17 @@ void lghAdd(uint slot, float value) {
     hi = ~hi + (lo == 0u ? 1u : 0u);
     lo = 0u - lo;
   }
-  uint old = atomicAdd(accum[2u * slot], lo);
-  hi += (old + lo < old) ? 1u : 0u;
+  return uvec2(lo, hi);
+}
+// Adds a 64-bit (lo, hi): the low word, the carry out of it from the returned old value, the
+// high word (skipped when zero). Exact modulo 2^64, whatever the order of the adds.
+void lghAddFixed(uint slot, uvec2 x) {
+  if (x == uvec2(0u)) return;
+  uint old = atomicAdd(accum[2u * slot], x.x);
+  uint hi = x.y + ((old + x.x < old) ? 1u : 0u);
   if (hi != 0u) atomicAdd(accum[2u * slot + 1u], hi);
 }
+void lghAdd(uint slot, float value) { lghAddFixed(slot, lghFixedSplit(value)); }
 float lghRead(uint slot) {
   uint lo = accum[2u * slot];
   int hi = int(accum[2u * slot + 1u]);
@@ -405,6 +445,48 @@ vec3 lghReadRgb(uint vertex) {
 // An occupied vertex: touched, with an accumulated luminance > 0. (Fixed point can round a touched
 // vertex's rgb to zero; it is then cleared but not emitted.)
 bool lghOccupied(uint vertex) { return lghTouched(vertex) && luminance(lghReadRgb(vertex)) > 0.0; }
+
+// ---- a light's share of its cell's corners (the scatter and the binned S1) ----------------------
+// Grid coordinate of p at level l, exactly as every kernel and the CPU reference compute it.
+vec3 lghGridCoordinate(vec3 p, uint l) {
+  const float cells = float(1u << (lgh.levelCount - l));
+  precise vec3 t = min((p - lgh.originH1.xyz) * lgh.level[l - 1u].cell.y, vec3(cells));
+  return t;
+}
+
+// The share of corner `corner` (bit 0: +x, bit 1: +y, bit 2: +z) of the cell floor(t) of a light
+// at grid coordinate t: w * rgb, w I u and w I u^2 with u = (t - vertex) in (-1, 1) and the
+// trilinear weight w. False (and nothing to add) for a zero weight: a light on a grid plane
+// touches 4, 2 or 1 vertices.
+bool lghCornerShare(vec3 t, vec3 rgb, float lum, uint corner, out uvec3 vertex, out vec3 wRgb,
+                    out vec3 moment1, out vec3 moment2) {
+  const vec3 i0 = floor(t);
+  const vec3 f = t - i0;
+  const bvec3 high = bvec3((corner & 1u) != 0u, (corner & 2u) != 0u, (corner & 4u) != 0u);
+  const vec3 axisWeight = mix(1.0 - f, f, high);
+  const float w = axisWeight.x * axisWeight.y * axisWeight.z;
+  vertex = uvec3(i0) + uvec3(high);
+  const vec3 u = mix(f, f - 1.0, high);
+  const float wi = w * lum;
+  wRgb = w * rgb;
+  moment1 = wi * u;
+  moment2 = wi * u * u;
+  return w > 0.0;
+}
+
+// ---- binned S1 ------------------------------------------------------------------------------------
+// Tile edge T in S1 cells; lgh_bin_accum.comp sizes its shared memory with the same constants.
+uint lghBinTile() {
+  return (lgh.flags & LGH_FLAG_FIXED_POINT) != 0u ? LGH_BIN_TILE_FIXED : LGH_BIN_TILE_FLOAT;
+}
+
+// The tile of the cell floor(t) (level-1 t). A light at t = dims - 1 exactly (the upper bounds,
+// when T divides the cells) belongs to the last tile: its cell lies outside, but it only touches
+// the vertex dims - 1, the last tile's upper corner.
+uint lghBinIndex(vec3 t) {
+  const uvec3 tile = min(uvec3(floor(t)) / lghBinTile(), st.binTiles.xyz - 1u);
+  return lghEncode(tile, st.binTiles.xyz);
+}
 
 // The level (1-based) whose dense range holds dense vertex `d`; 0 if none.
 uint lghLevelOfDense(uint d) {
@@ -464,6 +546,14 @@ void lghConfigure(uint L) {
     uint scatterGroups = l <= L ? lghCeilDiv(st.lightCount, LGH_GROUP) : 0u;
     st.dispatchArgs[LGH_SLOT_SCATTER + l] = lghDispatch(scatterGroups);
   }
+  // Binned S1: max(1, ceil(cells / T)) tiles per axis (a flat axis has 0 cells and one tile).
+  uvec4 binTiles = uvec4(0u);
+  if (L > 0u) {
+    const uint tileCells = lghBinTile();
+    uvec3 tiles = max((lgh.level[0].dims.xyz - 1u + tileCells - 1u) / tileCells, uvec3(1u));
+    binTiles = uvec4(tiles, tiles.x * tiles.y * tiles.z);
+  }
+  st.binTiles = binTiles;
   uint blocksAll = dense / LGH_BLOCK;
   uint blocksS1 = L > 0u ? lghAlignBlock(lgh.level[0].dims.w) / LGH_BLOCK : 0u;
   st.dispatchArgs[LGH_SLOT_COMPACT_S1] = lghDispatchAtLeastOne(blocksS1);

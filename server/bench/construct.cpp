@@ -27,6 +27,7 @@ struct ConstructFlags {
   bool json = false;
   bool perLevel = false;
   std::string atomics = "auto";
+  std::string s1 = "auto";
   std::uint32_t seed = 1;
   float flux = 10.0F;
   std::string order = "random";
@@ -58,14 +59,17 @@ std::vector<LghSettings::Method> parseMethods(const std::string& text) {
   return {LghSettings::Method::Gather, LghSettings::Method::Scatter};
 }
 
-std::string formatTable(const nlohmann::json& result, bool labelMethods) {
+// Column labels name the method and the S1 path only when the runs differ in them.
+std::string formatTable(const nlohmann::json& result, bool labelMethods, bool labelS1) {
   const auto& runs = result["runs"];
   std::vector<std::string> columns;
   std::vector<std::string> steps;
   std::size_t maxLevels = 0;
   for (const auto& run : runs) {
-    const std::string label = countLabel(run["vpls"].get<int>());
-    columns.push_back(labelMethods ? run["method"].get<std::string>() + " " + label : label);
+    std::string label = countLabel(run["vpls"].get<int>());
+    if (labelS1) label = run["s1"].get<std::string>() + " " + label;
+    if (labelMethods) label = run["method"].get<std::string>() + " " + label;
+    columns.push_back(label);
     for (const auto& step : run["steps"]) {
       const auto name = step["name"].get<std::string>();
       if (std::find(steps.begin(), steps.end(), name) == steps.end()) steps.push_back(name);
@@ -125,13 +129,14 @@ int runConstruct(const ConstructFlags& flags, const cli::ContextFlags& context) 
   options.timedIterations = flags.iterations;
   options.perLevelTimings = flags.perLevel;
   options.atomics = flags.atomics;
+  options.s1 = flags.s1;
   options.renderer = cli::rendererOptions(context);
   options.seed = flags.seed;
   options.totalFlux = flags.flux;
   options.vplOrder = flags.order;
   options.progress = [](const std::string& line) { std::cerr << line << '\n'; };
   const nlohmann::json result = runConstructBenchmark(options);
-  const std::string table = formatTable(result, options.methods.size() > 1);
+  const std::string table = formatTable(result, options.methods.size() > 1, options.s1 == "both");
   if (flags.json) {
     std::cerr << table;
     std::cout << result.dump(2) << '\n';
@@ -168,6 +173,11 @@ Command addConstructCommand(CLI::App& app, const cli::ContextFlags& context) {
   sub->add_flag("--per-level", flags->perLevel, "gather: one dispatch and row per level (Table 1)");
   sub->add_option("--atomics", flags->atomics, "auto, float (GL_NV_shader_atomic_float), fixed")
       ->check(CLI::IsMember({"auto", "float", "fixed"}))
+      ->capture_default_str();
+  sub->add_option("--s1", flags->s1,
+                  "S1 accumulation: direct (global atomics per light), binned (by tile, in shared "
+                  "memory), auto (binned for large inputs), both")
+      ->check(CLI::IsMember({"auto", "direct", "binned", "both"}))
       ->capture_default_str();
   sub->add_option("--seed", flags->seed, "VPL sampling seed")->capture_default_str();
   sub->add_option("--vpl-order", flags->order,

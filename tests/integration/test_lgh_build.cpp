@@ -1,8 +1,9 @@
 // The GPU LGH build (LghBuilder on Mesa llvmpipe) against the double-precision CPU reference, level
 // by level, on random, clustered, planar, lattice and demo-scene inputs, for both methods and both
 // atomics paths (llvmpipe has GL_NV_shader_atomic_float, so the float path runs here too); the
-// invariants on every level; degenerate inputs; buffer reuse; draw commands; and the GLSL blending
-// functions against their C++ mirror.
+// invariants on every level; degenerate inputs; buffer reuse; draw commands; the binned S1 against
+// the reference and (fixed point: bit for bit) the direct S1; and the GLSL blending functions
+// against their C++ mirror.
 //
 // Tolerances (docs/LGH.md "Tolerances"): grid lights are matched by vertex. The GPU's sums carry
 // an absolute error of about 1e-6 of the level's brightest grid light (float rounding of weights
@@ -44,6 +45,7 @@ namespace {
 using lgh::GridLight;
 using lgh::LghAtomics;
 using lgh::LghBuildSettings;
+using lgh::LghS1Scatter;
 using lgh::PointLight;
 using Method = lgh::LghSettings::Method;
 
@@ -63,17 +65,32 @@ struct GpuResult {
   std::vector<lgh::DrawArraysIndirectCommand> draws;
 };
 
-LghBuildSettings settings(int levels, Method method, LghAtomics atomics) {
+LghBuildSettings settings(int levels, Method method, LghAtomics atomics,
+                          LghS1Scatter s1 = LghS1Scatter::Auto) {
   LghBuildSettings s;
   s.levels = levels;
   s.method = method;
   s.atomics = atomics;
+  s.s1 = s1;
   return s;
 }
 
+const char* s1Name(LghS1Scatter s1) {
+  switch (s1) {
+    case LghS1Scatter::Direct:
+      return "direct S1";
+    case LghS1Scatter::Binned:
+      return "binned S1";
+    case LghS1Scatter::Auto:
+      break;
+  }
+  return "auto S1";
+}
+
 std::string describe(const LghBuildSettings& s) {
-  return fmt::format("levels {} {} {}", s.levels, s.method == Method::Gather ? "gather" : "scatter",
-                     s.atomics == LghAtomics::FixedPoint ? "fixed-point" : "float");
+  return fmt::format("levels {} {} {} {}", s.levels,
+                     s.method == Method::Gather ? "gather" : "scatter",
+                     s.atomics == LghAtomics::FixedPoint ? "fixed-point" : "float", s1Name(s.s1));
 }
 
 class LghBuild : public ::testing::Test {
@@ -209,6 +226,16 @@ PointLight light(glm::vec3 p, glm::vec3 c) {
 }
 
 const LghAtomics kAtomics[] = {LghAtomics::FixedPoint, LghAtomics::Auto};
+
+// `count` lights uniform in a cube of edge 2 r around `centre`.
+std::vector<PointLight> cubeCluster(int count, glm::vec3 centre, float r, std::uint32_t seed) {
+  return lgh::uniformLights(count, centre - glm::vec3(r), centre + glm::vec3(r), seed);
+}
+
+std::vector<PointLight> concat(std::vector<PointLight> a, const std::vector<PointLight>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
 
 TEST_F(LghBuild, UsesFloatAtomicsWhereAvailable) {
   // llvmpipe (Mesa 25) has GL_NV_shader_atomic_float: both paths get tested here.
@@ -385,6 +412,131 @@ TEST_F(LghBuild, DrawCommandsFollowTheLevelTable) {
   EXPECT_EQ(gpu.draws[lgh::kLghDrawBelowTop].instanceCount, fromStart - levels[4].count);
   for (int l = 6; l <= lgh::kLghMaxLevels; ++l) EXPECT_EQ(gpu.draws[l].instanceCount, 0U);
   EXPECT_EQ(gpu.table.totalLights, levels[4].offset + levels[4].count);
+}
+
+// ---- binned S1 ---------------------------------------------------------------------------
+
+TEST_F(LghBuild, BinnedS1MatchesReference) {
+  const auto uniform = lgh::uniformLights(8000, {-2, 0, -1}, {3, 1.5F, 1}, 21, 5.0F);
+  const auto clustered = lgh::clusteredLights(6000, 7, 0.03F, {0, 0, 0}, {4, 4, 4}, 5);
+  const auto plane = lgh::planeLights(4000, {-1, 0.25F, -1}, {2, 0, 0}, {0, 0, 2}, 8);
+  const auto lattice = lgh::latticeLights(9, {-1, -1, -1}, 0.25F, 9);
+  const auto vpls = lgh::sampleSurfaceVpls(lgh::makeDemoScene(), {10000, 3, 10.0F});
+  for (LghAtomics atomics : kAtomics) {
+    expectMatchesReference(uniform, settings(0, Method::Gather, atomics, LghS1Scatter::Binned));
+    expectMatchesReference(clustered, settings(6, Method::Gather, atomics, LghS1Scatter::Binned));
+    expectMatchesReference(plane, settings(0, Method::Gather, atomics, LghS1Scatter::Binned));
+    expectMatchesReference(lattice, settings(4, Method::Gather, atomics, LghS1Scatter::Binned));
+    expectMatchesReference(lattice, settings(4, Method::Scatter, atomics, LghS1Scatter::Binned));
+    for (Method method : {Method::Gather, Method::Scatter}) {
+      expectMatchesReference(vpls, settings(0, method, atomics, LghS1Scatter::Binned));
+    }
+  }
+}
+
+TEST_F(LghBuild, BinnedS1BigTilesAreChunked) {
+  // 3 levels: S1 has 4 cells per axis, one tile: 20000 lights in 20 chunks of one tile.
+  const auto one = lgh::uniformLights(20000, {0, 0, 0}, {1, 1, 1}, 41);
+  // 6 levels (S1: 32 cells per axis): 30000 lights inside one S1 tile (cells 10.1..10.5 of 32,
+  // within a tile for T = 8 and T = 6 alike) among 2000 spread over the whole grid.
+  const auto hot = concat(cubeCluster(30000, glm::vec3(10.3F / 32.0F), 0.005F, 42),
+                          lgh::uniformLights(2000, {0, 0, 0}, {1, 1, 1}, 43));
+  for (LghAtomics atomics : kAtomics) {
+    expectMatchesReference(one, settings(3, Method::Gather, atomics, LghS1Scatter::Binned));
+    expectMatchesReference(hot, settings(6, Method::Gather, atomics, LghS1Scatter::Binned));
+    expectMatchesReference(hot, settings(0, Method::Gather, atomics, LghS1Scatter::Binned));
+  }
+}
+
+TEST_F(LghBuild, BinnedS1DegenerateInputs) {
+  const std::vector<std::vector<PointLight>> sets{
+      {light({1, 2, 3}, {1, 0.5F, 0.25F})},                                 // one light
+      std::vector<PointLight>(300, light({-4, 0, 9}, {0.1F, 0.1F, 0.1F})),  // all at one point
+      lgh::planeLights(2000, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 4),           // zero extent along z
+      lgh::planeLights(500, {0, 0, 0}, {2, 0, 0}, {0, 0, 0}, 5)};           // on a line (y, z flat)
+  for (const auto& lights : sets) {
+    for (LghAtomics atomics : kAtomics) {
+      for (int levels : {0, 3, 9}) {
+        const GpuResult gpu = expectMatchesReference(
+            lights, settings(levels, Method::Gather, atomics, LghS1Scatter::Binned));
+        ASSERT_GE(gpu.table.levelCount, 1);
+      }
+    }
+  }
+  const LghBuildSettings s = settings(0, Method::Gather, LghAtomics::Auto, LghS1Scatter::Binned);
+  const GpuResult empty = build({}, s);
+  EXPECT_EQ(empty.table.levelCount, 0);
+  EXPECT_EQ(empty.draws[lgh::kLghDrawFromStart].instanceCount, 0U);
+  const GpuResult dark = build(std::vector<PointLight>(100, light({1, 1, 1}, {0, 0, 0})), s);
+  EXPECT_EQ(dark.table.levelCount, 0);
+  EXPECT_EQ(dark.table.totalLights, 0U);
+  auto invalid = lgh::uniformLights(1000, {0, 0, 0}, {1, 1, 1}, 13);
+  invalid[5].positionPad.x = std::numeric_limits<float>::quiet_NaN();
+  const GpuResult rejected = build(invalid, s);
+  EXPECT_EQ(rejected.table.invalidCount, 1U);
+  EXPECT_EQ(rejected.table.levelCount, 0);
+}
+
+// Fixed point: both S1 paths sum the same 64-bit integers, exactly: bit-identical grid lights.
+TEST_F(LghBuild, BinnedS1FixedPointEqualsDirect) {
+  const std::vector<std::vector<PointLight>> sets{
+      lgh::uniformLights(8000, {-2, 0, -1}, {3, 1.5F, 1}, 21, 5.0F),
+      lgh::clusteredLights(6000, 7, 0.03F, {0, 0, 0}, {4, 4, 4}, 5),
+      lgh::planeLights(4000, {-1, 0.25F, -1}, {2, 0, 0}, {0, 0, 2}, 8),
+      lgh::latticeLights(9, {-1, -1, -1}, 0.25F, 9),
+      lgh::sampleSurfaceVpls(lgh::makeDemoScene(), {10000, 3, 10.0F}),
+      std::vector<PointLight>(300, light({-4, 0, 9}, {0.1F, 0.1F, 0.1F})),
+      // Many chunks per tile (see BinnedS1BigTilesAreChunked).
+      lgh::uniformLights(20000, {0, 0, 0}, {1, 2, 1}, 41),
+      concat(cubeCluster(30000, glm::vec3(10.3F / 32.0F), 0.005F, 42),
+             lgh::uniformLights(2000, {0, 0, 0}, {1, 1, 1}, 43))};
+  for (const auto& lights : sets) {
+    for (int levels : {0, 3, 7}) {
+      const GpuResult direct = build(
+          lights, settings(levels, Method::Gather, LghAtomics::FixedPoint, LghS1Scatter::Direct));
+      const GpuResult binned = build(
+          lights, settings(levels, Method::Gather, LghAtomics::FixedPoint, LghS1Scatter::Binned));
+      ASSERT_EQ(binned.table.levelCount, direct.table.levelCount);
+      ASSERT_EQ(binned.lights.size(), direct.lights.size()) << "levels " << levels;
+      EXPECT_EQ(0, std::memcmp(binned.lights.data(), direct.lights.data(),
+                               direct.lights.size() * sizeof(GridLight)))
+          << lights.size() << " lights, levels " << levels;
+      EXPECT_EQ(0, std::memcmp(binned.draws.data(), direct.draws.data(),
+                               direct.draws.size() * sizeof(direct.draws[0])));
+    }
+  }
+}
+
+TEST_F(LghBuild, BinnedS1RebuildAfterOtherInputsIsIdentical) {
+  // The bin counts end at zero and the accumulators are cleared by the compaction: a stale value
+  // would show up here. Float and fixed point bin with different tile sizes.
+  const auto a = lgh::uniformLights(3000, {0, 0, 0}, {1, 2, 3}, 31);
+  const auto b = lgh::clusteredLights(12000, 3, 0.2F, {-5, -5, -5}, {5, 5, 5}, 32);
+  const LghBuildSettings s =
+      settings(0, Method::Gather, LghAtomics::FixedPoint, LghS1Scatter::Binned);
+  const GpuResult first = build(a, s);
+  build(b, settings(7, Method::Gather, LghAtomics::FixedPoint, LghS1Scatter::Binned));
+  build(b, settings(0, Method::Scatter, LghAtomics::Auto, LghS1Scatter::Binned));
+  build(a, settings(5, Method::Gather, LghAtomics::Auto, LghS1Scatter::Direct));
+  const GpuResult again = build(a, s);
+  ASSERT_EQ(first.lights.size(), again.lights.size());
+  EXPECT_EQ(0, std::memcmp(first.lights.data(), again.lights.data(),
+                           first.lights.size() * sizeof(GridLight)));
+}
+
+TEST_F(LghBuild, AutoS1BinsLargeInputs) {
+  // Past kLghBinnedMinLights the default is the binned S1: same result as the direct one.
+  const auto lights =
+      lgh::sampleSurfaceVpls(lgh::makeDemoScene(), {lgh::kLghBinnedMinLights, 5, 10.0F});
+  ASSERT_TRUE(lgh::lghUseBinnedS1(LghBuildSettings{}, static_cast<int>(lights.size())));
+  const GpuResult automatic =
+      expectMatchesReference(lights, settings(0, Method::Gather, LghAtomics::FixedPoint));
+  const GpuResult direct =
+      build(lights, settings(0, Method::Gather, LghAtomics::FixedPoint, LghS1Scatter::Direct));
+  ASSERT_EQ(automatic.lights.size(), direct.lights.size());
+  EXPECT_EQ(0, std::memcmp(automatic.lights.data(), direct.lights.data(),
+                           direct.lights.size() * sizeof(GridLight)));
+  expectMatchesReference(lights, settings(0, Method::Gather, LghAtomics::Auto));
 }
 
 TEST_F(LghBuild, BlendGlslMatchesCpp) {

@@ -24,7 +24,11 @@ struct ConstructBenchmarkOptions {
   int timedIterations = 10;
   bool perLevelTimings = false;  // gather: one dispatch and timer row per level (Table 1 rows)
   std::string atomics = "auto";  // "auto", "float" (GL_NV_shader_atomic_float), "fixed"
-  RendererOptions renderer;      // context backend and GPU
+  // S1 accumulation: "auto" (binned from lgh::kLghBinnedMinLights lights on), "direct" (one
+  // thread per light, global atomics), "binned" (by S1 tile, summed in shared memory), or "both"
+  // (a run of each per count and method).
+  std::string s1 = "auto";
+  RendererOptions renderer;  // context backend and GPU
   std::uint32_t seed = 1;
   float totalFlux = 10.0F;
   // "random" (as sampled) or "morton" (sorted along a Z-order curve first): how the S1 scatter's
@@ -34,7 +38,7 @@ struct ConstructBenchmarkOptions {
 };
 
 // Creates its own GL context (current on the calling thread while it runs). Returns
-// {"benchmark", "device", "settings", "runs": [{"vpls", "method", "levels", "level_counts",
+// {"benchmark", "device", "settings", "runs": [{"vpls", "method", "s1", "levels", "level_counts",
 //  "grid_lights", "steps": [{"name", "median_ms", "min_ms", "max_ms"}], "total_ms", ...}]}.
 // Throws lgh::Error (BadRequest for bad options, Unavailable without a context).
 nlohmann::json runConstructBenchmark(const ConstructBenchmarkOptions& options);

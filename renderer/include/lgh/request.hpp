@@ -116,7 +116,7 @@ struct RequestLimits {
   std::int64_t maxPixels = 8192LL * 8192LL;
   int maxLights = 4096;
   int maxVpls = 4 * 1024 * 1024;
-  std::size_t maxInlineGlbBytes = 256U * 1024U * 1024U;
+  std::size_t maxInlineGlbBytes = std::size_t{256} * 1024U * 1024U;
 };
 
 // Validates `json` against proto/render-request.schema.json, then against `limits`, and returns

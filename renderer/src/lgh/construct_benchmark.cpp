@@ -48,6 +48,16 @@ LghAtomics parseAtomics(const std::string& name) {
               "atomics");
 }
 
+// The S1 settings a run list covers ("both": direct, then binned).
+std::vector<LghS1Scatter> parseS1(const std::string& name) {
+  if (name == "auto") return {LghS1Scatter::Auto};
+  if (name == "direct") return {LghS1Scatter::Direct};
+  if (name == "binned") return {LghS1Scatter::Binned};
+  if (name == "both") return {LghS1Scatter::Direct, LghS1Scatter::Binned};
+  throw Error(ErrorCode::BadRequest, "s1 must be auto, direct, binned or both, not '" + name + "'",
+              "s1");
+}
+
 const char* methodName(LghSettings::Method method) {
   return method == LghSettings::Method::Gather ? "gather" : "scatter";
 }
@@ -175,6 +185,7 @@ nlohmann::json timedRun(LghBuilder& builder, GLuint lights, int count,
 nlohmann::json runConstructBenchmark(const ConstructBenchmarkOptions& options) {
   checkOptions(options);
   const LghAtomics atomics = parseAtomics(options.atomics);
+  const std::vector<LghS1Scatter> s1Modes = parseS1(options.s1);
   std::unique_ptr<GlContext> context = GlContext::create(options.renderer);
   const Scene scene = makeDemoScene();
   LghBuilder builder;
@@ -188,22 +199,27 @@ nlohmann::json runConstructBenchmark(const ConstructBenchmarkOptions& options) {
     if (options.vplOrder == "morton") sortAlongZOrder(vpls);
     uploadPointLights(vpls, lightBuffer);
     for (LghSettings::Method method : options.methods) {
-      LghBuildSettings settings;
-      settings.levels = options.levels;
-      settings.method = method;
-      settings.atomics = atomics;
-      settings.splitLevels = options.perLevelTimings;
-      nlohmann::json run = timedRun(builder, lightBuffer.id(), count, settings, options);
-      run["vpls"] = count;
-      run["method"] = methodName(method);
-      run["vpl_sampling_cpu_ms"] = sampleMs;
-      if (options.progress) {
-        options.progress(
-            fmt::format("lgh construct: {} VPLs, {}: {} levels, {} grid lights, {:.3f} ms", count,
-                        methodName(method), run["levels"].get<int>(),
-                        run["grid_lights"].get<std::uint32_t>(), run["total_ms"].get<double>()));
+      for (LghS1Scatter s1 : s1Modes) {
+        LghBuildSettings settings;
+        settings.levels = options.levels;
+        settings.method = method;
+        settings.atomics = atomics;
+        settings.s1 = s1;
+        settings.splitLevels = options.perLevelTimings;
+        nlohmann::json run = timedRun(builder, lightBuffer.id(), count, settings, options);
+        const char* s1Name = lghUseBinnedS1(settings, count) ? "binned" : "direct";
+        run["vpls"] = count;
+        run["method"] = methodName(method);
+        run["s1"] = s1Name;
+        run["vpl_sampling_cpu_ms"] = sampleMs;
+        if (options.progress) {
+          options.progress(
+              fmt::format("lgh construct: {} VPLs, {}, {} S1: {} levels, {} grid lights, {:.3f} ms",
+                          count, methodName(method), s1Name, run["levels"].get<int>(),
+                          run["grid_lights"].get<std::uint32_t>(), run["total_ms"].get<double>()));
+        }
+        runs.push_back(std::move(run));
       }
-      runs.push_back(std::move(run));
     }
   }
   nlohmann::json methods = nlohmann::json::array();
@@ -218,6 +234,8 @@ nlohmann::json runConstructBenchmark(const ConstructBenchmarkOptions& options) {
         {"timed_iterations", options.timedIterations},
         {"per_level_timings", options.perLevelTimings},
         {"atomics", options.atomics},
+        {"s1", options.s1},
+        {"vpl_order", options.vplOrder},
         {"seed", options.seed},
         {"scene", "demo"}}},
       {"runs", runs}};

@@ -21,9 +21,13 @@ constexpr int kSlotCompactS1 = 6;
 constexpr int kSlotCompactRest = 7;
 constexpr int kSlotCompactAll = 8;
 constexpr int kSlotGatherAll = 9;
-constexpr int kSlotGather = 8;            // + level
-constexpr int kSlotScatter = 24;          // + level
-constexpr GLsizeiptr kStateBytes = 2048;  // LghState is 1728 bytes
+constexpr int kSlotGather = 8;    // + level
+constexpr int kSlotScatter = 24;  // + level
+constexpr int kSlotBinAccum = 41;
+constexpr GLsizeiptr kStateBytes = 2048;  // LghState is 1760 bytes
+constexpr std::size_t kBinTileFloat = 8;  // S1 cells per tile edge (LGH_BIN_TILE_*)
+constexpr std::size_t kBinTileFixed = 6;
+constexpr std::size_t kBinChunk = 1024;  // lights per accumulation work group
 
 enum Binding : GLuint {
   kLights = 0,
@@ -38,6 +42,9 @@ enum Binding : GLuint {
   kBlocks = 9,
   kDraws = 10,
   kTouched = 11,
+  kBinCount = 12,
+  kBinStart = 13,
+  kBinItems = 14,
 };
 
 struct BoundsPartial {
@@ -47,6 +54,7 @@ struct BoundsPartial {
 };
 static_assert(sizeof(BoundsPartial) == 48);
 constexpr std::size_t kRecordBytes = 48;
+constexpr std::size_t kBinLightBytes = 32;  // LghBinLight, kept in the records' buffer
 
 GLuint ceilDiv(std::size_t a, std::size_t b) { return static_cast<GLuint>((a + b - 1) / b); }
 
@@ -81,6 +89,8 @@ struct LghBuilder::CommonPrograms {
   gl::Program boundsOnly = gl::buildComputeProgram("lgh_bounds.comp", "#define LGH_BOUNDS_ONLY 1");
   gl::Program mark = gl::buildComputeProgram("lgh_occupancy.comp");
   gl::Program step = gl::buildComputeProgram("lgh_occupancy.comp", "#define LGH_OCC_STEP 1");
+  gl::Program binCount = gl::buildComputeProgram("lgh_bin_count.comp");
+  gl::Program binScatter = gl::buildComputeProgram("lgh_bin_scatter.comp");
 };
 
 // The kernels that touch the accumulators, compiled once per atomics mode.
@@ -89,11 +99,13 @@ struct LghBuilder::AccumPrograms {
       : scatter(gl::buildComputeProgram("lgh_scatter.comp", defines)),
         gather(gl::buildComputeProgram("lgh_gather.comp", defines)),
         count(gl::buildComputeProgram("lgh_compact_count.comp", defines)),
-        write(gl::buildComputeProgram("lgh_compact_write.comp", defines)) {}
+        write(gl::buildComputeProgram("lgh_compact_write.comp", defines)),
+        binAccum(gl::buildComputeProgram("lgh_bin_accum.comp", defines)) {}
   gl::Program scatter;
   gl::Program gather;
   gl::Program count;
   gl::Program write;
+  gl::Program binAccum;
 };
 
 // GPU-only storage: no DYNAMIC_STORAGE / MAP bits, so drivers keep it in video memory (reads go
@@ -151,6 +163,14 @@ LghBuilder::Capacity LghBuilder::capacityFor(int count, const LghBuildSettings& 
   capacity.gridLights = std::max<std::size_t>(1, std::min(budget, 8 * n * kLghMaxLevels));
   capacity.s1Lights = std::max<std::size_t>(1, std::min(budget, 8 * n));
   capacity.fixedPoint = fixedPoint;
+  if (lghUseBinnedS1(settings, count)) {
+    // Per axis max(1, ceil(c / T)) tiles for c cells: at most 2 (c + 1) / T when c >= T, 1 when
+    // c < T; so over the three axes at most max(1, 2 n / T) for n S1 vertices, n <= budget.
+    const std::size_t tile = fixedPoint ? kBinTileFixed : kBinTileFloat;
+    capacity.binTiles = 2 * budget / tile + 1;
+    // Occupied tiles (at most one per light) plus one item per further chunk.
+    capacity.binItems = std::min(capacity.binTiles, n) + n / kBinChunk + 1;
+  }
   return capacity;
 }
 
@@ -174,18 +194,24 @@ void LghBuilder::reserve(const Capacity& needed) {
   };
   reserve(partials_, partials * sizeof(BoundsPartial));
   reserve(gridLights_, needed.gridLights * sizeof(GridLight));
-  reserve(records_, needed.s1Lights * kRecordBytes);
+  // The binned S1 keeps its sorted lights in the records' buffer (records are written later).
+  reserve(records_, std::max(needed.s1Lights * kRecordBytes,
+                             needed.binTiles > 0 ? needed.lights * kBinLightBytes : 0));
   reserve(rank_, (needed.denseVertices + 1) * sizeof(GLuint));
   // Cleared by the S1 scatter after each use.
   reserveZeroed(bitmaps_, (needed.denseVertices / 32 + kLghMaxLevels) * sizeof(GLuint));
   reserve(blocks_, (needed.denseVertices / kBlock + kLghMaxLevels) * sizeof(GLuint));
+  // Bound even when unused: at least a word each.
+  reserveZeroed(binCount_, std::max<std::size_t>(needed.binTiles, 1) * sizeof(GLuint));
+  reserve(binStart_, (needed.binTiles + 1) * sizeof(GLuint));
+  reserve(binItems_, std::max<std::size_t>(needed.binItems, 1) * 2 * sizeof(GLuint));
 }
 
 std::size_t LghBuilder::allocatedBytes() const {
   std::size_t total = 0;
   for (const gl::SizedBuffer* buffer :
        {&levels_, &state_, &partials_, &accum_, &gridLights_, &records_, &rank_, &bitmaps_,
-        &blocks_, &draws_, &touched_}) {
+        &blocks_, &draws_, &touched_, &binCount_, &binStart_, &binItems_}) {
     total += static_cast<std::size_t>(buffer->size);
   }
   return total;
@@ -194,10 +220,11 @@ std::size_t LghBuilder::allocatedBytes() const {
 void LghBuilder::bindBuffers(GLuint lightsBuffer) const {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLights, lightsBuffer);
   const std::pair<Binding, const gl::SizedBuffer*> buffers[] = {
-      {kLevels, &levels_}, {kState, &state_},           {kPartials, &partials_},
-      {kAccum, &accum_},   {kGridLights, &gridLights_}, {kRecords, &records_},
-      {kRank, &rank_},     {kBitmaps, &bitmaps_},       {kBlocks, &blocks_},
-      {kDraws, &draws_},   {kTouched, &touched_}};
+      {kLevels, &levels_},     {kState, &state_},           {kPartials, &partials_},
+      {kAccum, &accum_},       {kGridLights, &gridLights_}, {kRecords, &records_},
+      {kRank, &rank_},         {kBitmaps, &bitmaps_},       {kBlocks, &blocks_},
+      {kDraws, &draws_},       {kTouched, &touched_},       {kBinCount, &binCount_},
+      {kBinStart, &binStart_}, {kBinItems, &binItems_}};
   for (const auto& [binding, buffer] : buffers) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer->id());
   }
@@ -227,12 +254,7 @@ void LghBuilder::build(GLuint lightsBuffer, int count, const LghBuildSettings& s
   }
   {
     OptionalPass pass(timer, "lgh S1");
-    glUseProgram(p.accum.scatter.id());
-    setUniform(p.accum.scatter.id(), "u_level", 1);
-    const auto bitmapWords = static_cast<GLuint>(bitmaps_.size / sizeof(GLuint));
-    setUniform(p.accum.scatter.id(), "u_clearWords", settings.levels <= 0 ? bitmapWords : 0);
-    dispatchSlot(kSlotScatter + 1);
-    storageBarrier();
+    runS1(p, count, settings);
   }
   if (settings.method == LghSettings::Method::Gather) {
     {
@@ -291,6 +313,37 @@ void LghBuilder::runAutoLevels(const Programs& p, int count) {
     storageBarrier();
   }
   glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
+}
+
+// S1 from the input lights; either way it also clears the auto levels' occupancy bitmaps.
+void LghBuilder::runS1(const Programs& p, int count, const LghBuildSettings& settings) {
+  const auto bitmapWords = static_cast<GLuint>(bitmaps_.size / sizeof(GLuint));
+  const GLuint clearWords = settings.levels <= 0 ? bitmapWords : 0;
+  if (lghUseBinnedS1(settings, count)) {
+    runBinnedS1(p, count, clearWords);
+    return;
+  }
+  glUseProgram(p.accum.scatter.id());
+  setUniform(p.accum.scatter.id(), "u_level", 1);
+  setUniform(p.accum.scatter.id(), "u_clearWords", clearWords);
+  dispatchSlot(kSlotScatter + 1);
+  storageBarrier();
+}
+
+// Count per tile (+ offsets and work items in its last work group) -> sort the lights by tile ->
+// one work group per (tile, chunk) sums in shared memory and flushes to the accumulators.
+void LghBuilder::runBinnedS1(const Programs& p, int count, GLuint clearWords) {
+  const GLuint binCount = p.common.binCount.id();
+  glUseProgram(binCount);
+  setUniform(binCount, "u_clearWords", clearWords);
+  dispatch2D(std::max<GLuint>(ceilDiv(static_cast<std::size_t>(count), kGroup), 1));
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  glUseProgram(p.common.binScatter.id());
+  dispatchSlot(kSlotScatter + 1);  // one thread per light; no groups without levels
+  storageBarrier();
+  glUseProgram(p.accum.binAccum.id());
+  dispatchSlot(kSlotBinAccum);
+  storageBarrier();
 }
 
 // Count (+ offsets in its last work group) -> write, over the blocks of levels

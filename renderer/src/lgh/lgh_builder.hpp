@@ -1,9 +1,10 @@
 // Builds the Lighting Grid Hierarchy on the GPU from a buffer of point lights (Lin & Yuksel 2019,
-// Sec. 3.1): bounds -> [auto levels] -> S1 by scatter -> S2..SL by gather from S1 (or every level
-// by scatter) -> stream compaction straight into one merged grid-light buffer, plus the level table
-// and indirect draw commands. Everything after the call to build() stays on the GPU: sizes the CPU
-// cannot know are turned into glDispatchComputeIndirect arguments by the kernels themselves.
-// docs/LGH.md describes the steps, buffer layouts and tolerances.
+// Sec. 3.1): bounds -> [auto levels] -> S1 by scatter (direct, or binned by tile and summed in
+// shared memory) -> S2..SL by gather from S1 (or every level by scatter) -> stream compaction
+// straight into one merged grid-light buffer, plus the level table and indirect draw commands.
+// Everything after the call to build() stays on the GPU: sizes the CPU cannot know are turned into
+// glDispatchComputeIndirect arguments by the kernels themselves. docs/LGH.md describes the steps,
+// buffer layouts and tolerances.
 //
 // Needs a current GL 4.5 context on the calling thread for its whole life.
 #pragma once
@@ -71,6 +72,9 @@ class LghBuilder {
     std::size_t gridLights = 0;
     std::size_t s1Lights = 0;
     bool fixedPoint = false;
+    // Binned S1 only (0 otherwise): tiles the S1 grid may have, (tile, chunk) work items.
+    std::size_t binTiles = 0;
+    std::size_t binItems = 0;
   };
 
   Programs programs(bool fixedPoint);
@@ -80,6 +84,8 @@ class LghBuilder {
   void bindBuffers(GLuint lightsBuffer) const;
   void runBounds(const Programs& p, int count, const LghBuildSettings& settings, bool fixedPoint);
   void runAutoLevels(const Programs& p, int count);
+  void runS1(const Programs& p, int count, const LghBuildSettings& settings);
+  void runBinnedS1(const Programs& p, int count, GLuint clearWords);
   void runCompaction(const Programs& p, int slot, int firstLevel, bool onlyFirst, bool final,
                      const LghBuildSettings& settings);
   void runGather(const Programs& p, const LghBuildSettings& settings, gl::GpuTimer* timer);
@@ -104,6 +110,9 @@ class LghBuilder {
   gl::SizedBuffer blocks_;
   gl::SizedBuffer draws_;
   gl::SizedBuffer touched_;
+  gl::SizedBuffer binCount_;         // binned S1: lights per tile (zero between builds)
+  gl::SizedBuffer binStart_;         // tile offsets into the sorted lights (kept in records_)
+  gl::SizedBuffer binItems_;         // (tile, chunk) work items
   mutable gl::SizedBuffer staging_;  // client-side copy target of the read-backs
 };
 

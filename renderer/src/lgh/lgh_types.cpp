@@ -22,6 +22,18 @@ LghBuildSettings LghBuildSettings::fromRequest(const LghSettings& settings) {
   return build;
 }
 
+bool lghUseBinnedS1(const LghBuildSettings& settings, int lightCount) {
+  switch (settings.s1) {
+    case LghS1Scatter::Direct:
+      return false;
+    case LghS1Scatter::Binned:
+      return true;
+    case LghS1Scatter::Auto:
+      break;
+  }
+  return lightCount >= kLghBinnedMinLights;
+}
+
 std::size_t lghDefaultDenseBudget(std::size_t lightCount) {
   return std::clamp<std::size_t>(4 * lightCount, std::size_t{1} << 18, std::size_t{1} << 25);
 }

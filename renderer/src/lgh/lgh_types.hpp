@@ -100,10 +100,23 @@ enum class LghAtomics {
   FixedPoint,  // 64-bit fixed point from 32-bit integer atomics (portable, order independent)
 };
 
+// How S1 is accumulated from the input lights (docs/LGH.md, "S1 scatter and atomics").
+enum class LghS1Scatter {
+  Auto,    // Binned from kLghBinnedMinLights lights on, Direct below
+  Direct,  // one thread per light, 8 corners x 9 global atomics (lgh_scatter.comp)
+  Binned,  // counting sort by S1 tile, then per-tile sums in shared memory (lgh_bin_*.comp)
+};
+
+// Below this many lights the binned S1's two extra dependent dispatches cost more than the direct
+// scatter's atomics save (an estimate from the H100 timings of both; tune with
+// `lgh-bench construct --s1 both`).
+inline constexpr int kLghBinnedMinLights = 32768;
+
 struct LghBuildSettings {
   int levels = 0;  // 0: auto (largest L with |S1| < N/2); clamped to what the budget holds
   LghSettings::Method method = LghSettings::Method::Gather;
   LghAtomics atomics = LghAtomics::Auto;
+  LghS1Scatter s1 = LghS1Scatter::Auto;
   bool splitLevels = false;  // gather: one dispatch (and timer pass) per level instead of one
   int drawStartLevel = 1;    // lowest level of the "from start" and "below top" draw commands
   int cubeVertexCount = 36;  // vertices per light-volume instance in the draw commands
@@ -112,6 +125,9 @@ struct LghBuildSettings {
 
   static LghBuildSettings fromRequest(const LghSettings& settings);
 };
+
+// Whether a build of `lightCount` lights accumulates S1 binned (settings.s1, Auto resolved).
+bool lghUseBinnedS1(const LghBuildSettings& settings, int lightCount);
 
 // clamp(4 N, 2^18, 2^25): room for the auto levels of surface-like inputs (|S1| < N/2 with a
 // quarter of the S1 grid occupied), bounded for memory.
