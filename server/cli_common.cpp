@@ -17,8 +17,7 @@ void addContextFlags(CLI::App& app, ContextFlags& flags) {
   app.add_flag("--require-gpu", flags.requireGpu,
                "fail instead of rendering on a software rasterizer");
   app.add_flag("--gl-debug", flags.glDebug, "create a KHR_debug context");
-  app.add_option("--asset-root", flags.assetRoot,
-                 "folder that scene asset paths resolve inside")
+  app.add_option("--asset-root", flags.assetRoot, "folder that scene asset paths resolve inside")
       ->capture_default_str();
   app.add_option("--log-level", flags.logLevel, "trace, debug, info, warn, error, off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}))

@@ -1,12 +1,13 @@
 // lgh-render: renders one request to a file and prints the timing table.
-//   lgh-render REQUEST.json -o OUT.png|OUT.exr [--timings OUT.json] [--gpu N] [--width W --height H]
+//   lgh-render REQUEST.json -o OUT.png|OUT.exr [--timings OUT.json] [--gpu N]
+//              [--width W --height H]
 //   lgh-render --demo -o demo.png
 #include <algorithm>
 #include <cstdio>
-#include <vector>
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

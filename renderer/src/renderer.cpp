@@ -3,8 +3,8 @@
 #include <chrono>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include "context/gl_context.hpp"
 #include "frame_pipeline.hpp"
@@ -70,10 +70,10 @@ RenderResult Renderer::render(const RenderRequest& request) {
 }
 
 nlohmann::json DeviceInfo::toJson() const {
-  return {{"context_path", contextPath},   {"egl_device_index", eglDeviceIndex},
+  return {{"context_path", contextPath},        {"egl_device_index", eglDeviceIndex},
           {"egl_device_count", eglDeviceCount}, {"gl_vendor", glVendor},
-          {"gl_renderer", glRenderer},     {"gl_version", glVersion},
-          {"glsl_version", glslVersion},   {"software_renderer", softwareRenderer},
+          {"gl_renderer", glRenderer},          {"gl_version", glVersion},
+          {"glsl_version", glslVersion},        {"software_renderer", softwareRenderer},
           {"image_backend", imageBackend}};
 }
 

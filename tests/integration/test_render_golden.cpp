@@ -78,8 +78,8 @@ TEST_F(GoldenRender, TransparentBackgroundKeepsAlpha) {
 }
 
 TEST_F(GoldenRender, TimingTableHasEveryPass) {
-  lgh::RenderResult result = renderer->render(lgh::parseRenderRequest(
-      R"({"output": {"width": 32, "height": 32}})"));
+  lgh::RenderResult result =
+      renderer->render(lgh::parseRenderRequest(R"({"output": {"width": 32, "height": 32}})"));
   for (const char* pass : {"gbuffer", "direct lighting", "composite", "scene load", "upload",
                            "readback", "encode", "total"}) {
     EXPECT_GE(result.timings.get(pass), 0.0) << pass;
@@ -101,8 +101,9 @@ TEST_F(GoldenRender, BadAssetIsAnErrorAndRendererStaysUsable) {
   EXPECT_THROW(renderer->render(lgh::parseRenderRequest(
                    R"({"scene": {"asset": "IndexOutOfRange/IndexOutOfRange.gltf"}})")),
                lgh::Error);
-  EXPECT_THROW(renderer->render(lgh::parseRenderRequest(R"({"scene": {"asset": "../etc/passwd"}})")),
-               lgh::Error);
+  EXPECT_THROW(
+      renderer->render(lgh::parseRenderRequest(R"({"scene": {"asset": "../etc/passwd"}})")),
+      lgh::Error);
   auto image = render(R"({"output": {"width": 160, "height": 120}})");
   EXPECT_EQ(lgh::test::checkGolden(image, "demo_160x120", kMaxMeanError, kMaxFraction), "");
 }

@@ -23,7 +23,7 @@ namespace lgh::test {
 
 // Difference of two 8-bit images of equal size, over RGB(A) channels on a 0..255 scale.
 struct ImageDifference {
-  double meanAbsoluteError = 0.0;   // mean over all channel values
+  double meanAbsoluteError = 0.0;      // mean over all channel values
   double fractionOverThreshold = 0.0;  // pixels with any channel differing by more than threshold
   int maxError = 0;
 };

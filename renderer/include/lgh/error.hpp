@@ -8,20 +8,22 @@
 namespace lgh {
 
 enum class ErrorCode {
-  BadRequest,    // 400: malformed input (not JSON, wrong type, schema violation)
-  NotFound,      // 404: an asset or file that does not exist
-  TooLarge,      // 413: over a configured size limit
-  Invalid,       // 422: well-formed but semantically invalid (NaN, limits, broken glTF)
-  Unavailable,   // 503: no usable device or context
-  Timeout,       // 504: the render ran past its deadline
-  Internal,      // 500: a bug or a driver failure
+  BadRequest,   // 400: malformed input (not JSON, wrong type, schema violation)
+  NotFound,     // 404: an asset or file that does not exist
+  TooLarge,     // 413: over a configured size limit
+  Invalid,      // 422: well-formed but semantically invalid (NaN, limits, broken glTF)
+  Unavailable,  // 503: no usable device or context
+  Timeout,      // 504: the render ran past its deadline
+  Internal,     // 500: a bug or a driver failure
 };
 
 class Error : public std::runtime_error {
  public:
   Error(ErrorCode code, std::string message, std::string field = {})
       : std::runtime_error(field.empty() ? message : field + ": " + message),
-        code_(code), message_(std::move(message)), field_(std::move(field)) {}
+        code_(code),
+        message_(std::move(message)),
+        field_(std::move(field)) {}
 
   ErrorCode code() const { return code_; }
   // The message without the field prefix.

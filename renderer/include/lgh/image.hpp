@@ -19,9 +19,7 @@ struct FloatImage {
   std::vector<float> rgba;  // width * height * 4
 
   float* pixel(int x, int y) { return &rgba[(static_cast<size_t>(y) * width + x) * 4]; }
-  const float* pixel(int x, int y) const {
-    return &rgba[(static_cast<size_t>(y) * width + x) * 4];
-  }
+  const float* pixel(int x, int y) const { return &rgba[(static_cast<size_t>(y) * width + x) * 4]; }
 };
 
 // 8-bit image, `channels` 1..4, rows top to bottom.

@@ -25,9 +25,9 @@ const char* contextBackendName(ContextBackend backend);
 
 struct RendererOptions {
   ContextBackend backend = ContextBackend::Auto;
-  int gpuIndex = 0;          // EGL device index (EGL's order, not CUDA's)
-  bool requireGpu = false;   // fail instead of running on a software rasterizer
-  bool glDebug = false;      // KHR_debug context; messages go to the log either way
+  int gpuIndex = 0;         // EGL device index (EGL's order, not CUDA's)
+  bool requireGpu = false;  // fail instead of running on a software rasterizer
+  bool glDebug = false;     // KHR_debug context; messages go to the log either way
   std::filesystem::path assetRoot = ".";
   std::size_t maxTriangles = 20'000'000;
   int maxTextureSize = 16384;

@@ -37,13 +37,13 @@ struct LightDesc {
 struct SceneSource {
   enum class Kind { Demo, AssetPath, InlineGlb, UploadedGltf };
   Kind kind = Kind::Demo;
-  std::string assetPath;              // relative to the asset root (AssetPath)
+  std::string assetPath;               // relative to the asset root (AssetPath)
   std::vector<std::uint8_t> glbBytes;  // decoded base64 or an uploaded .glb (InlineGlb)
   // An uploaded .gltf (UploadedGltf): its file name and every uploaded file by name, side files
   // (buffers, images) included. Its URIs resolve only among these files.
   std::string gltfFileName;
   std::map<std::string, std::vector<std::uint8_t>> uploadedFiles;
-  std::string displayName;            // for logs and thumbnail names
+  std::string displayName;  // for logs and thumbnail names
 };
 
 struct CameraDesc {
@@ -82,7 +82,7 @@ enum class LightingPath { Auto, Raster, Compute };
 // the G-buffer. Consumed by the LGH build and the lighting passes.
 struct LghSettings {
   bool enabled = false;
-  int vplCount = 0;           // random VPLs on the scene's surfaces (seeded); 0: none
+  int vplCount = 0;  // random VPLs on the scene's surfaces (seeded); 0: none
   std::uint32_t seed = 1;
   float vplIntensity = 1.0F;  // total flux scale of the generated VPLs
   float alpha = 1.0F;
@@ -102,7 +102,7 @@ struct RenderSettings {
 
 struct RenderRequest {
   SceneSource scene;
-  std::vector<LightDesc> lights;  // extra lights beside the asset's
+  std::vector<LightDesc> lights;      // extra lights beside the asset's
   bool useDemoLightsWhenNone = true;  // an asset with no light gets a default key light
   CameraDesc camera;
   OutputSettings output;

@@ -15,7 +15,6 @@
 
 namespace lgh {
 
-
 namespace {
 
 bool hasExtension(const char* list, const char* name) {
@@ -31,24 +30,35 @@ bool hasExtension(const char* list, const char* name) {
 
 std::string eglErrorName(EGLint error) {
   switch (error) {
-    case EGL_SUCCESS: return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
+    case EGL_SUCCESS:
+      return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED:
+      return "EGL_NOT_INITIALIZED";
     case EGL_BAD_ACCESS:
       return "EGL_BAD_ACCESS (the device is in use or not accessible: a wrong GPU index, a MIG "
              "slice, or a container without graphics capability)";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    default: return fmt::format("EGL error 0x{:x}", error);
+    case EGL_BAD_ALLOC:
+      return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+      return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+      return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+      return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY:
+      return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+      return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+      return "EGL_BAD_PARAMETER";
+    default:
+      return fmt::format("EGL error 0x{:x}", error);
   }
 }
 
 [[noreturn]] void failEgl(const std::string& what) {
-  throw Error(ErrorCode::Unavailable, fmt::format("{} failed: {}", what, eglErrorName(eglGetError())));
+  throw Error(ErrorCode::Unavailable,
+              fmt::format("{} failed: {}", what, eglErrorName(eglGetError())));
 }
 
 void GLAPIENTRY debugCallback(GLenum /*source*/, GLenum type, GLuint id, GLenum severity,
@@ -106,15 +116,16 @@ class EglContext final : public GlContext {
     EGLConfig config = chooseConfig(extensions);
     // Ask for 4.6 core; Mesa's llvmpipe stops at 4.5, which has everything we use.
     for (int minor : {6, 5}) {
-      std::vector<EGLint> attributes{EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, minor,
-                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
+      std::vector<EGLint> attributes{
+          EGL_CONTEXT_MAJOR_VERSION,       4,
+          EGL_CONTEXT_MINOR_VERSION,       minor,
+          EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
       if (debug) attributes.insert(attributes.end(), {EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE});
       attributes.push_back(EGL_NONE);
       context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, attributes.data());
       if (context_ != EGL_NO_CONTEXT) return;
-      spdlog::info("no OpenGL 4.{} core context on {} ({}); trying lower", minor,
-                   info_.contextPath, eglErrorName(eglGetError()));
+      spdlog::info("no OpenGL 4.{} core context on {} ({}); trying lower", minor, info_.contextPath,
+                   eglErrorName(eglGetError()));
     }
     throw Error(ErrorCode::Unavailable,
                 fmt::format("no OpenGL 4.5+ core context on {}", info_.contextPath));
@@ -209,8 +220,10 @@ std::unique_ptr<GlContext> createSurfacelessContext(const RendererOptions& optio
 
 std::unique_ptr<GlContext> createBackend(ContextBackend backend, const RendererOptions& options) {
   switch (backend) {
-    case ContextBackend::EglDevice: return createEglDeviceContext(options);
-    case ContextBackend::Surfaceless: return createSurfacelessContext(options);
+    case ContextBackend::EglDevice:
+      return createEglDeviceContext(options);
+    case ContextBackend::Surfaceless:
+      return createSurfacelessContext(options);
     case ContextBackend::OSMesa:
       // libepoxy resolves GL entry points only through a current EGL or GLX context and aborts
       // otherwise (anholt/libepoxy#163), and Mesa 25.1 removed OSMesa: surfaceless EGL on
@@ -218,7 +231,8 @@ std::unique_ptr<GlContext> createBackend(ContextBackend backend, const RendererO
       throw Error(ErrorCode::Unavailable,
                   "the osmesa backend is not supported: libepoxy needs an EGL or GLX context; "
                   "use --backend surfaceless for software rendering");
-    case ContextBackend::Auto: break;
+    case ContextBackend::Auto:
+      break;
   }
   throw Error(ErrorCode::Internal, "no context backend selected");
 }
@@ -226,9 +240,8 @@ std::unique_ptr<GlContext> createBackend(ContextBackend backend, const RendererO
 void checkRequirements(const GlContext& context, const RendererOptions& options) {
   const DeviceInfo& info = context.info();
   if (info.glMajor < 4 || (info.glMajor == 4 && info.glMinor < 5)) {
-    throw Error(ErrorCode::Unavailable,
-                fmt::format("OpenGL 4.5 or newer is required; {} gives {}", info.contextPath,
-                            info.glVersion));
+    throw Error(ErrorCode::Unavailable, fmt::format("OpenGL 4.5 or newer is required; {} gives {}",
+                                                    info.contextPath, info.glVersion));
   }
   if (options.requireGpu && info.softwareRenderer) {
     throw Error(ErrorCode::Unavailable,
@@ -268,8 +281,7 @@ std::unique_ptr<GlContext> GlContext::create(const RendererOptions& options) {
       auto context = createBackend(backend, options);
       checkRequirements(*context, options);
       spdlog::info("GL context: {} | {} | {} | {}", context->info().contextPath,
-                   context->info().glVendor, context->info().glRenderer,
-                   context->info().glVersion);
+                   context->info().glVendor, context->info().glRenderer, context->info().glVersion);
       return context;
     } catch (const Error& error) {
       // --require-gpu still falls back between paths (NVIDIA also offers surfaceless EGL);
@@ -295,10 +307,14 @@ ContextBackend parseContextBackend(const std::string& name) {
 
 const char* contextBackendName(ContextBackend backend) {
   switch (backend) {
-    case ContextBackend::Auto: return "auto";
-    case ContextBackend::EglDevice: return "egl-device";
-    case ContextBackend::Surfaceless: return "surfaceless";
-    case ContextBackend::OSMesa: return "osmesa";
+    case ContextBackend::Auto:
+      return "auto";
+    case ContextBackend::EglDevice:
+      return "egl-device";
+    case ContextBackend::Surfaceless:
+      return "surfaceless";
+    case ContextBackend::OSMesa:
+      return "osmesa";
   }
   return "?";
 }

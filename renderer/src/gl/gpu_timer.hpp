@@ -35,7 +35,8 @@ class GpuTimer {
 // Brackets a scope: ScopedGpuPass pass(timer, "gbuffer");
 class ScopedGpuPass {
  public:
-  ScopedGpuPass(GpuTimer& timer, std::string name) : timer_(timer), token_(timer.begin(std::move(name))) {}
+  ScopedGpuPass(GpuTimer& timer, std::string name)
+      : timer_(timer), token_(timer.begin(std::move(name))) {}
   ~ScopedGpuPass() { timer_.end(token_); }
   ScopedGpuPass(const ScopedGpuPass&) = delete;
   ScopedGpuPass& operator=(const ScopedGpuPass&) = delete;

@@ -108,9 +108,10 @@ enum class LghS1Scatter {
 };
 
 // Below this many lights the binned S1's two extra dependent dispatches cost more than the direct
-// scatter's atomics save (an estimate from the H100 timings of both; tune with
-// `lgh-bench construct --s1 both`).
-inline constexpr int kLghBinnedMinLights = 32768;
+// scatter's atomics save. Measured on the H100 (`lgh-bench construct --s1 both`, demo VPLs): at
+// 100K the direct S1 is faster (0.124 against 0.157 ms), at 1M the binned one (0.750 against
+// 1.374 ms); the crossover between them was not measured, 256K is a round guess inside it.
+inline constexpr int kLghBinnedMinLights = 262144;
 
 struct LghBuildSettings {
   int levels = 0;  // 0: auto (largest L with |S1| < N/2); clamped to what the budget holds

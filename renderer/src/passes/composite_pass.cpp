@@ -7,8 +7,8 @@
 namespace lgh {
 
 CompositePass::CompositePass()
-    : program_(gl::buildProgram({{GL_VERTEX_SHADER, "fullscreen.vert"},
-                                 {GL_FRAGMENT_SHADER, "composite.frag"}})) {}
+    : program_(gl::buildProgram(
+          {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "composite.frag"}})) {}
 
 void CompositePass::run(const OutputSettings& output, bool hasIndirect, FrameTargets& targets) {
   glBindFramebuffer(GL_FRAMEBUFFER, targets.finalFramebuffer.id());

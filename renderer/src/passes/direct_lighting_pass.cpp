@@ -17,8 +17,8 @@ void bindGBuffer(const GBufferTargets& gbuffer) {
 }
 
 DirectLightingPass::DirectLightingPass()
-    : program_(gl::buildProgram({{GL_VERTEX_SHADER, "fullscreen.vert"},
-                                 {GL_FRAGMENT_SHADER, "direct_lighting.frag"}})) {}
+    : program_(gl::buildProgram(
+          {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "direct_lighting.frag"}})) {}
 
 void DirectLightingPass::run(const std::vector<LightDesc>& lights, const CameraMatrices& camera,
                              float ambient, FrameTargets& targets) {

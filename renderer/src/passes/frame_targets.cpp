@@ -20,8 +20,8 @@ gl::Texture makeTarget(GLenum format, int width, int height) {
 void checkComplete(const gl::Framebuffer& framebuffer, const char* name) {
   GLenum status = glCheckNamedFramebufferStatus(framebuffer.id(), GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
-    throw Error(ErrorCode::Internal, "framebuffer incomplete (status " + std::to_string(status) + ")",
-                name);
+    throw Error(ErrorCode::Internal,
+                "framebuffer incomplete (status " + std::to_string(status) + ")", name);
   }
 }
 
@@ -45,9 +45,8 @@ void FrameTargets::resize(int newWidth, int newHeight) {
   gbuffer.emissive = makeTarget(GL_RGBA16F, width, height);
   gbuffer.depth = makeTarget(GL_DEPTH_COMPONENT32F, width, height);
   gbuffer.framebuffer = gl::Framebuffer();
-  const std::array<const gl::Texture*, 5> colors{&gbuffer.position, &gbuffer.normal,
-                                                 &gbuffer.albedo, &gbuffer.material,
-                                                 &gbuffer.emissive};
+  const std::array<const gl::Texture*, 5> colors{
+      &gbuffer.position, &gbuffer.normal, &gbuffer.albedo, &gbuffer.material, &gbuffer.emissive};
   std::array<GLenum, 5> buffers{};
   for (size_t i = 0; i < colors.size(); ++i) {
     buffers[i] = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);

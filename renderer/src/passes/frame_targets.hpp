@@ -20,11 +20,11 @@ struct FrameTargets {
   int width = 0;
   int height = 0;
   GBufferTargets gbuffer;
-  gl::Texture direct{GL_TEXTURE_2D};    // RGBA16F: direct lighting radiance
+  gl::Texture direct{GL_TEXTURE_2D};  // RGBA16F: direct lighting radiance
   gl::Framebuffer directFramebuffer;
   gl::Texture indirect{GL_TEXTURE_2D};  // RGBA16F: LGH lighting radiance
   gl::Framebuffer indirectFramebuffer;
-  gl::Texture final{GL_TEXTURE_2D};     // RGBA32F: linear composite
+  gl::Texture final{GL_TEXTURE_2D};  // RGBA32F: linear composite
   gl::Framebuffer finalFramebuffer;
 
   // Reallocates every target for this size (no-op when unchanged).

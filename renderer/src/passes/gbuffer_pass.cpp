@@ -21,8 +21,8 @@ const Material& materialOrDefault(const Scene& scene, int index) {
 }  // namespace
 
 GBufferPass::GBufferPass()
-    : program_(gl::buildProgram({{GL_VERTEX_SHADER, "gbuffer.vert"},
-                                 {GL_FRAGMENT_SHADER, "gbuffer.frag"}})) {
+    : program_(gl::buildProgram(
+          {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "gbuffer.frag"}})) {
   worldLocation_ = glGetUniformLocation(program_.id(), "uWorld");
   normalMatrixLocation_ = glGetUniformLocation(program_.id(), "uNormalMatrix");
   viewProjectionLocation_ = glGetUniformLocation(program_.id(), "uViewProjection");

@@ -1,4 +1,5 @@
-// Analytic lights packed for the GPU (std430, mirrored by `struct Light` in glsl/include/lights.glsl).
+// Analytic lights packed for the GPU (std430, mirrored by `struct Light` in
+// glsl/include/lights.glsl).
 #pragma once
 
 #include <vector>

@@ -57,7 +57,8 @@ CameraMatrices autoCamera(const CameraDesc& desc, const Scene& scene, float aspe
   camera.position = center + direction * distance;
   camera.view = glm::lookAt(camera.position, center, safeUp(-direction, toVec3(desc.up)));
   camera.zfar = desc.zfar > 0.0F ? desc.zfar : distance + radius * 1.5F;
-  camera.znear = desc.znear > 0.0F ? desc.znear : std::max(distance - radius * 1.5F, camera.zfar * 1e-4F);
+  camera.znear =
+      desc.znear > 0.0F ? desc.znear : std::max(distance - radius * 1.5F, camera.zfar * 1e-4F);
   camera.projection = glm::perspective(yfov, aspect, camera.znear, camera.zfar);
   return camera;
 }
@@ -90,9 +91,12 @@ CameraMatrices gltfCamera(const CameraDesc& desc, const Scene& scene, float aspe
 CameraMatrices computeCamera(const CameraDesc& desc, const Scene& scene, int width, int height) {
   const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
   switch (desc.kind) {
-    case CameraDesc::Kind::LookAt: return lookAtCamera(desc, scene, aspect);
-    case CameraDesc::Kind::GltfCamera: return gltfCamera(desc, scene, aspect);
-    case CameraDesc::Kind::Auto: return autoCamera(desc, scene, aspect);
+    case CameraDesc::Kind::LookAt:
+      return lookAtCamera(desc, scene, aspect);
+    case CameraDesc::Kind::GltfCamera:
+      return gltfCamera(desc, scene, aspect);
+    case CameraDesc::Kind::Auto:
+      return autoCamera(desc, scene, aspect);
     case CameraDesc::Kind::Default:
       return scene.cameras.empty() ? autoCamera(desc, scene, aspect)
                                    : gltfCamera(desc, scene, aspect);

@@ -10,8 +10,8 @@
 #define TINYGLTF_NO_FS
 #include <tiny_gltf.h>
 
-#include "scene/gltf_loader.hpp"
 #include "request/json_pointer.hpp"
+#include "scene/gltf_loader.hpp"
 
 #include <algorithm>
 #include <cctype>

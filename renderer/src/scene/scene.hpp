@@ -81,10 +81,10 @@ struct Material {
 struct SceneCamera {
   std::string name;
   bool perspective = true;
-  float yfov = 0.8F;  // radians
+  float yfov = 0.8F;         // radians
   float aspectRatio = 0.0F;  // 0: from the output size
   float znear = 0.1F;
-  float zfar = 0.0F;  // 0: infinite in glTF; derived from bounds here
+  float zfar = 0.0F;               // 0: infinite in glTF; derived from bounds here
   float xmag = 1.0F, ymag = 1.0F;  // orthographic
   glm::mat4 world{1.0F};
 };
@@ -106,10 +106,10 @@ struct Scene {
   std::vector<Mesh> meshes;
   std::vector<MeshInstance> instances;
   std::vector<Material> materials;
-  std::vector<Image8> images;  // decoded RGBA8
+  std::vector<Image8> images;     // decoded RGBA8
   std::vector<LightDesc> lights;  // world space
   std::vector<SceneCamera> cameras;
-  Bounds bounds;  // world space, over all instances
+  Bounds bounds;                      // world space, over all instances
   std::vector<std::string> warnings;  // repairs made while loading (shown in the result)
 
   std::size_t triangleCount() const;

@@ -39,7 +39,8 @@ SceneCache::SceneCache(const RendererOptions& options) : options_(options) {
 
 std::string SceneCache::keyFor(const SceneSource& source) const {
   switch (source.kind) {
-    case SceneSource::Kind::Demo: return "demo";
+    case SceneSource::Kind::Demo:
+      return "demo";
     case SceneSource::Kind::InlineGlb:
       return fmt::format("glb:{:016x}:{}", fnv1a(source.glbBytes), source.glbBytes.size());
     case SceneSource::Kind::UploadedGltf: {
@@ -69,7 +70,8 @@ Scene SceneCache::load(const SceneSource& source) const {
   limits.maxTriangles = options_.maxTriangles;
   limits.maxTextureSize = options_.maxTextureSize;
   switch (source.kind) {
-    case SceneSource::Kind::Demo: return makeDemoScene();
+    case SceneSource::Kind::Demo:
+      return makeDemoScene();
     case SceneSource::Kind::InlineGlb:
       return loadGlbBytes(source.glbBytes,
                           source.displayName.empty() ? "inline.glb" : source.displayName, limits);
