@@ -3,8 +3,11 @@
 #pragma once
 
 #include <functional>
+#include <iostream>
+#include <string>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
 
@@ -14,6 +17,18 @@ struct Command {
   CLI::App* app = nullptr;   // the subcommand, to ask whether it was parsed
   std::function<int()> run;  // exit status; may throw lgh::Error
 };
+
+// Prints a benchmark's result: the table on stdout, or with --json the JSON document on stdout
+// and the table on stderr (so that `> out.json` keeps both). Returns the exit status.
+inline int printResult(const nlohmann::json& result, const std::string& table, bool json) {
+  if (json) {
+    std::cerr << table;
+    std::cout << result.dump(2) << '\n';
+  } else {
+    std::cout << table;
+  }
+  return 0;
+}
 
 // `lgh-bench construct`: LGH construction timings (server/bench/construct.cpp).
 Command addConstructCommand(CLI::App& app, const cli::ContextFlags& context);

@@ -136,14 +136,8 @@ int runConstruct(const ConstructFlags& flags, const cli::ContextFlags& context) 
   options.vplOrder = flags.order;
   options.progress = [](const std::string& line) { std::cerr << line << '\n'; };
   const nlohmann::json result = runConstructBenchmark(options);
-  const std::string table = formatTable(result, options.methods.size() > 1, options.s1 == "both");
-  if (flags.json) {
-    std::cerr << table;
-    std::cout << result.dump(2) << '\n';
-  } else {
-    std::cout << table;
-  }
-  return 0;
+  return printResult(result, formatTable(result, options.methods.size() > 1, options.s1 == "both"),
+                     flags.json);
 }
 
 }  // namespace

@@ -126,14 +126,7 @@ int runRender(const RenderFlags& flags, const cli::ContextFlags& context) {
   options.vplIntensity = flags.intensity;
   options.progress = [](const std::string& line) { std::cerr << line << '\n'; };
   const nlohmann::json result = runRenderBenchmark(options);
-  const std::string table = formatTable(result);
-  if (flags.json) {
-    std::cerr << table;
-    std::cout << result.dump(2) << '\n';
-  } else {
-    std::cout << table;
-  }
-  return 0;
+  return printResult(result, formatTable(result), flags.json);
 }
 
 }  // namespace
