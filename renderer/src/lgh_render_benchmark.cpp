@@ -59,16 +59,19 @@ void checkOptions(const RenderBenchmarkOptions& o) {
                 "give at least one VPL count, path, interleave and sample count");
   }
   for (int count : o.vplCounts) {
-    if (count <= 0)
+    if (count <= 0) {
       throw Error(ErrorCode::BadRequest, fmt::format("VPL count {} must be > 0", count), "vpls");
+    }
   }
   for (int k : o.shadowSamples) {
-    if (k < 1 || k > 8)
+    if (k < 1 || k > 8) {
       throw Error(ErrorCode::BadRequest, "shadow samples must be 1..8", "samples");
+    }
   }
   for (LightingPath path : o.paths) {
-    if (path == LightingPath::Auto)
+    if (path == LightingPath::Auto) {
       throw Error(ErrorCode::BadRequest, "paths are raster or compute", "paths");
+    }
   }
   if (o.width <= 0 || o.height <= 0 || o.timedIterations <= 0 || o.warmupIterations < 0) {
     throw Error(ErrorCode::BadRequest, "sizes and iterations must be > 0 (warm-up >= 0)");
@@ -229,8 +232,9 @@ std::string progressLine(const nlohmann::json& run) {
       run["vpls"].get<int>(), run["path"].get<std::string>(), run["interleave"].get<std::string>(),
       run["shadow_samples"].get<int>(), run["locked"].get<bool>() ? ", locked" : "",
       run["lighting_ms"].get<double>(), run["render_ms"].get<double>());
-  if (run.contains("relative_rmse"))
+  if (run.contains("relative_rmse")) {
     line += fmt::format(", rel. RMSE {:.4f}", run["relative_rmse"].get<double>());
+  }
   if (run.contains("overdraw") && run["overdraw"].contains("mean")) {
     line += fmt::format(", overdraw {:.1f}", run["overdraw"]["mean"].get<double>());
   }

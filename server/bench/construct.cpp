@@ -67,8 +67,8 @@ std::string formatTable(const nlohmann::json& result, bool labelMethods, bool la
   std::size_t maxLevels = 0;
   for (const auto& run : runs) {
     std::string label = countLabel(run["vpls"].get<int>());
-    if (labelS1) label = run["s1"].get<std::string>() + " " + label;
-    if (labelMethods) label = run["method"].get<std::string>() + " " + label;
+    if (labelS1) label.insert(0, run["s1"].get<std::string>() + " ");
+    if (labelMethods) label.insert(0, run["method"].get<std::string>() + " ");
     columns.push_back(label);
     for (const auto& step : run["steps"]) {
       const auto name = step["name"].get<std::string>();

@@ -92,8 +92,10 @@ std::string formatTable(const nlohmann::json& result) {
 
 std::vector<LightingPath> parsePaths(const std::vector<std::string>& names) {
   std::vector<LightingPath> paths;
-  for (const auto& name : names)
+  paths.reserve(names.size());
+  for (const auto& name : names) {
     paths.push_back(name == "raster" ? LightingPath::Raster : LightingPath::Compute);
+  }
   return paths;
 }
 

@@ -102,8 +102,9 @@ void checkOptions(const ConstructBenchmarkOptions& options) {
     throw Error(ErrorCode::BadRequest, "give at least one VPL count and one method");
   }
   for (int count : options.vplCounts) {
-    if (count <= 0)
+    if (count <= 0) {
       throw Error(ErrorCode::BadRequest, fmt::format("VPL count {} must be > 0", count), "vpls");
+    }
   }
   if (options.timedIterations <= 0 || options.warmupIterations < 0) {
     throw Error(ErrorCode::BadRequest, "iterations must be > 0 and warm-up >= 0", "iterations");

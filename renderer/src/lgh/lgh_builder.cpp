@@ -188,7 +188,7 @@ void LghBuilder::reserve(const Capacity& needed) {
   reserveZeroed(accum_, needed.denseVertices * stride);
   reserveZeroed(touched_, (needed.denseVertices / 32 + 1) * sizeof(GLuint));
   const std::size_t partials =
-      std::max<std::size_t>(1, ceilDiv(needed.lights, kGroup * kBoundsItems));
+      std::max<std::size_t>(1, ceilDiv(needed.lights, std::size_t{kGroup} * kBoundsItems));
   auto reserve = [](gl::SizedBuffer& buffer, std::size_t bytes) {
     buffer.reserve(static_cast<GLsizeiptr>(bytes), kGpuOnly);
   };
@@ -278,7 +278,8 @@ void LghBuilder::build(GLuint lightsBuffer, int count, const LghBuildSettings& s
 // One dispatch: the bounds partials, then (last work group) the set-up of the whole build.
 void LghBuilder::runBounds(const Programs& p, int count, const LghBuildSettings& settings,
                            bool fixedPoint) {
-  const GLuint groups = ceilDiv(static_cast<std::size_t>(count), kGroup * kBoundsItems);
+  const GLuint groups =
+      ceilDiv(static_cast<std::size_t>(count), std::size_t{kGroup} * kBoundsItems);
   GLuint flags = settings.levels <= 0 ? kLghFlagAutoLevels : 0;
   if (fixedPoint) flags |= kLghFlagFixedPoint;
   if (settings.method == LghSettings::Method::Gather) flags |= kLghFlagGather;
@@ -416,7 +417,8 @@ void LghBuilder::validate(GLuint lightsBuffer, int count) {
   if (count < 0) throw Error(ErrorCode::Invalid, fmt::format("negative light count {}", count));
   if (count == 0) return;
   const Programs p = programs(!floatAtomicsAvailable_);
-  const GLuint groups = ceilDiv(static_cast<std::size_t>(count), kGroup * kBoundsItems);
+  const GLuint groups =
+      ceilDiv(static_cast<std::size_t>(count), std::size_t{kGroup} * kBoundsItems);
   partials_.reserve(static_cast<GLsizeiptr>(groups * sizeof(BoundsPartial)), kGpuOnly);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLights, lightsBuffer);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPartials, partials_.id());

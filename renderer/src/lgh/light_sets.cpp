@@ -39,6 +39,7 @@ std::vector<PointLight> uniformLights(int count, glm::vec3 lo, glm::vec3 hi, std
                                       float flux) {
   Random random(seed);
   std::vector<PointLight> lights;
+  lights.reserve(lights.size() + static_cast<std::size_t>(std::max(count, 0)));
   for (int i = 0; i < count; ++i) {
     lights.push_back(makeLight(lo + (hi - lo) * random.uniform3(), random, perLight(flux, count)));
   }
@@ -49,8 +50,9 @@ std::vector<PointLight> clusteredLights(int count, int clusters, float sigma, gl
                                         glm::vec3 hi, std::uint32_t seed, float flux) {
   Random random(seed);
   std::vector<glm::vec3> centres;
-  for (int c = 0; c < std::max(clusters, 1); ++c)
+  for (int c = 0; c < std::max(clusters, 1); ++c) {
     centres.push_back(lo + (hi - lo) * random.uniform3());
+  }
   std::vector<PointLight> lights;
   for (int i = 0; i < count; ++i) {
     const glm::vec3 offset(random.gaussian(), random.gaussian(), random.gaussian());

@@ -24,8 +24,9 @@ float srgbToLinear(std::uint8_t value) {
 
 // Nearest texel with repeat wrapping; white when the image is missing.
 glm::vec3 texel(const Scene& scene, const TextureRef& ref, glm::vec2 uv) {
-  if (!ref.valid() || static_cast<std::size_t>(ref.image) >= scene.images.size())
+  if (!ref.valid() || static_cast<std::size_t>(ref.image) >= scene.images.size()) {
     return glm::vec3(1.0F);
+  }
   const Image8& image = scene.images[static_cast<std::size_t>(ref.image)];
   if (image.width <= 0 || image.height <= 0 || image.channels < 3) return glm::vec3(1.0F);
   uv -= glm::floor(uv);
@@ -43,8 +44,9 @@ std::vector<Triangle> worldTriangles(const Scene& scene, std::vector<double>& cu
   std::vector<Triangle> triangles;
   double total = 0.0;
   for (const MeshInstance& instance : scene.instances) {
-    if (instance.mesh < 0 || static_cast<std::size_t>(instance.mesh) >= scene.meshes.size())
+    if (instance.mesh < 0 || static_cast<std::size_t>(instance.mesh) >= scene.meshes.size()) {
       continue;
+    }
     for (const Primitive& primitive :
          scene.meshes[static_cast<std::size_t>(instance.mesh)].primitives) {
       const bool hasMaterial =

@@ -160,9 +160,11 @@ void LghRasterLightingPass::drawLightVolumes(const LghLightingParams& params,
       glProgramUniform1i(program, tileLocation, tile);
       glProgramUniform4fv(program, transformLocation, 1,
                           glm::value_ptr(tileTransform(tx, ty, targets)));
-      glDrawArraysIndirect(GL_TRIANGLES,
-                           reinterpret_cast<const void*>(static_cast<std::uintptr_t>(tile) *
-                                                         sizeof(DrawArraysIndirectCommand)));
+      // GL takes the offset into the bound indirect buffer as a pointer.
+      const std::uintptr_t offset =
+          static_cast<std::uintptr_t>(tile) * sizeof(DrawArraysIndirectCommand);
+      // NOLINTNEXTLINE(performance-no-int-to-ptr)
+      glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(offset));
     }
   }
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
