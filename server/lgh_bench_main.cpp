@@ -10,7 +10,8 @@
 #include "cli_common.hpp"
 #include "lgh/error.hpp"
 
-int main(int argc, char** argv) {
+// A function-try-block: set-up errors (CLI, logging) end in a message, never in terminate().
+int main(int argc, char** argv) try {
   CLI::App app{"lgh-bench: benchmarks of the lghd renderer (GPU timer queries, medians)"};
   lgh::cli::ContextFlags context;
   lgh::cli::addContextFlags(app, context);
@@ -33,4 +34,10 @@ int main(int argc, char** argv) {
     }
   }
   return 2;
+} catch (const std::exception& error) {
+  std::cerr << "lgh-bench: error: " << error.what() << '\n';
+  return 1;
+} catch (...) {
+  std::cerr << "lgh-bench: unknown error\n";
+  return 1;
 }

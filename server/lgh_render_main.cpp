@@ -84,6 +84,7 @@ lgh::TimingTable medianTimings(const std::vector<lgh::TimingTable>& runs) {
   lgh::TimingTable median;
   for (const auto& row : runs.front().rows) {
     std::vector<double> values;
+    values.reserve(runs.size());
     for (const auto& run : runs) values.push_back(run.get(row.name));
     std::sort(values.begin(), values.end());
     median.add(row.name, row.clock, values[values.size() / 2]);
@@ -122,7 +123,8 @@ int run(const Flags& flags) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// A function-try-block: set-up errors (CLI, logging) end in a message, never in terminate().
+int main(int argc, char** argv) try {
   CLI::App app{"lgh-render: render one lghd request (JSON) to a PNG or EXR file"};
   Flags flags;
   auto* requestOption =
@@ -157,4 +159,10 @@ int main(int argc, char** argv) {
     std::cerr << "lgh-render: error: " << error.what() << '\n';
     return 1;
   }
+} catch (const std::exception& error) {
+  std::cerr << "lgh-render: error: " << error.what() << '\n';
+  return 1;
+} catch (...) {
+  std::cerr << "lgh-render: unknown error\n";
+  return 1;
 }

@@ -22,8 +22,9 @@ void header(std::string& out, const char* name, const char* type, const char* he
 
 void counterLines(std::string& out, const char* name,
                   const std::map<std::string, std::uint64_t>& values) {
-  for (const auto& [labels, value] : values)
+  for (const auto& [labels, value] : values) {
     out += fmt::format("{}{{{}}} {}\n", name, labels, value);
+  }
 }
 
 void histogramLines(std::string& out, const char* name,

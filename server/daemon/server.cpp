@@ -118,7 +118,7 @@ void exceptionAnswer(const httplib::Request& request, httplib::Response& respons
                      std::exception_ptr exception) {
   std::string what = "unknown exception";
   try {
-    std::rethrow_exception(exception);
+    std::rethrow_exception(std::move(exception));
   } catch (const std::exception& error) {
     what = error.what();
   } catch (...) {

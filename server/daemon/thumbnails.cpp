@@ -168,10 +168,9 @@ std::string uniqueFileName(const std::string& name, std::size_t index,
                            std::set<std::string>& taken) {
   if (taken.insert(name).second) return name;
   const std::size_t dot = name.find_last_of('.');
-  const std::string unique =
-      dot == std::string::npos || dot == 0
-          ? fmt::format("{}_{}", name, index)
-          : fmt::format("{}_{}{}", name.substr(0, dot), index, name.substr(dot));
+  std::string unique = dot == std::string::npos || dot == 0
+                           ? fmt::format("{}_{}", name, index)
+                           : fmt::format("{}_{}{}", name.substr(0, dot), index, name.substr(dot));
   taken.insert(unique);
   return unique;
 }

@@ -54,6 +54,7 @@ const bool sigpipeIgnored = [] {
 
 std::vector<char*> pointers(std::vector<std::string>& strings) {
   std::vector<char*> result;
+  result.reserve(strings.size() + 1);
   for (std::string& text : strings) result.push_back(text.data());
   result.push_back(nullptr);
   return result;
@@ -127,7 +128,7 @@ std::string readFile(const fs::path& path) {
   return text.str();
 }
 
-DaemonProcess::DaemonProcess(std::vector<std::string> args, std::vector<std::string> env) {
+DaemonProcess::DaemonProcess(std::vector<std::string> args, const std::vector<std::string>& env) {
   logPath_ = assetRoot().outside /
              ("lghd-" + std::to_string(Clock::now().time_since_epoch().count()) + ".log");
   std::vector<std::string> argv = {
@@ -180,8 +181,9 @@ bool DaemonProcess::exited() {
 std::optional<int> DaemonProcess::stop(int signal, std::chrono::milliseconds timeout) {
   if (!exited()) kill(pid_, signal);
   const auto end = Clock::now() + timeout;
-  while (!exited() && Clock::now() < end)
+  while (!exited() && Clock::now() < end) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   if (!exited()) return std::nullopt;
   if (*exitStatus_ >= 128) return std::nullopt;
   return exitStatus_;
@@ -203,8 +205,9 @@ std::pair<int, std::string> runLghd(const std::vector<std::string>& args) {
   std::string output;
   char buffer[4096];
   ssize_t got = 0;
-  while ((got = read(stdoutFd, buffer, sizeof buffer)) > 0)
+  while ((got = read(stdoutFd, buffer, sizeof buffer)) > 0) {
     output.append(buffer, static_cast<std::size_t>(got));
+  }
   close(stdoutFd);
   int status = 0;
   waitpid(pid, &status, 0);

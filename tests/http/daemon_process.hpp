@@ -34,7 +34,8 @@ class DaemonProcess {
  public:
   // Starts lghd with --port 0 --asset-root <assetRoot> plus `args`, and `env` (NAME=VALUE) added
   // to the environment; waits until /readyz answers 200 (or throws after 60 s).
-  explicit DaemonProcess(std::vector<std::string> args = {}, std::vector<std::string> env = {});
+  explicit DaemonProcess(std::vector<std::string> args = {},
+                         const std::vector<std::string>& env = {});
   ~DaemonProcess();
   DaemonProcess(const DaemonProcess&) = delete;
   DaemonProcess& operator=(const DaemonProcess&) = delete;

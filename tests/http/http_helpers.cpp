@@ -37,7 +37,7 @@ json expectError(const httplib::Result& result, int status, const std::string& c
     return {};
   }
   EXPECT_EQ(result->status, status) << result->body;
-  const json error = errorOf(result);
+  json error = errorOf(result);
   EXPECT_EQ(error.value("code", ""), code) << error.dump();
   return error;
 }

@@ -39,8 +39,9 @@ struct Tally {
   }
   std::string describe() {
     std::string text;
-    for (const auto& [status, count] : statuses)
+    for (const auto& [status, count] : statuses) {
       text += std::to_string(status) + "x" + std::to_string(count) + " ";
+    }
     for (const auto& [error, count] : failures) text += error + "x" + std::to_string(count) + " ";
     return text;
   }
@@ -50,6 +51,7 @@ TEST(ConcurrencyTest, ManyClientsGetResultsOr429sNeverOther5xx) {
   DaemonProcess daemon({"--queue-depth", "2", "--test-render-delay-ms", "40"});
   Tally tally;
   std::vector<std::thread> clients;
+  clients.reserve(clients.size() + 24);
   for (int i = 0; i < 24; ++i) {
     clients.emplace_back([&] {
       auto http = daemon.client();
@@ -84,6 +86,7 @@ TEST(ConcurrencyTest, SigtermDuringLoadExitsZeroAndAnswersEveryRequest) {
   std::atomic<bool> stopping = false;
   std::atomic<int> finishedClients = 0;
   std::vector<std::thread> clients;
+  clients.reserve(clients.size() + 8);
   for (int i = 0; i < 8; ++i) {
     clients.emplace_back([&] {
       // Until the daemon stops taking connections: each request on a fresh connection.
@@ -128,6 +131,7 @@ TEST(ConcurrencyTest, GracePeriodOverCancelsQueuedRendersWith503) {
       {"--queue-depth", "8", "--test-render-delay-ms", "400", "--grace-seconds", "0.3"});
   Tally tally;
   std::vector<std::thread> clients;
+  clients.reserve(clients.size() + 5);
   for (int i = 0; i < 5; ++i) {
     clients.emplace_back([&] {
       auto http = daemon.client(std::chrono::seconds(20));

@@ -178,8 +178,9 @@ class LghBuild : public ::testing::Test {
       const GridLight& g = gpu.lights[i++];
       const auto& r = expected.lights[j++];
       const double significance = kSumError * maxLum / r.luminance;
-      if (i > info.offset + 1)
+      if (i > info.offset + 1) {
         ASSERT_LT(gpu.lights[i - 2].vertex, g.vertex) << "not in vertex order";
+      }
       for (int a = 0; a < 3; ++a) {
         ASSERT_NEAR(g.intensity[a], r.intensity[a],
                     kIntensityRel * r.intensity[a] + kIntensityAbs * maxLum)
@@ -246,21 +247,24 @@ TEST_F(LghBuild, UsesFloatAtomicsWhereAvailable) {
 
 TEST_F(LghBuild, RandomUniformAutoLevels) {
   const auto lights = lgh::uniformLights(8000, {-2, 0, -1}, {3, 1.5F, 1}, 21, 5.0F);
-  for (LghAtomics atomics : kAtomics)
+  for (LghAtomics atomics : kAtomics) {
     expectMatchesReference(lights, settings(0, Method::Gather, atomics));
+  }
 }
 
 TEST_F(LghBuild, ClusteredExplicitLevels) {
   const auto lights = lgh::clusteredLights(6000, 7, 0.03F, {0, 0, 0}, {4, 4, 4}, 5);
-  for (LghAtomics atomics : kAtomics)
+  for (LghAtomics atomics : kAtomics) {
     expectMatchesReference(lights, settings(6, Method::Gather, atomics));
+  }
 }
 
 TEST_F(LghBuild, DemoSceneVplsBothMethods) {
   const auto lights = lgh::sampleSurfaceVpls(lgh::makeDemoScene(), {10000, 3, 10.0F});
   for (Method method : {Method::Gather, Method::Scatter}) {
-    for (LghAtomics atomics : kAtomics)
+    for (LghAtomics atomics : kAtomics) {
       expectMatchesReference(lights, settings(0, method, atomics));
+    }
   }
 }
 
@@ -280,8 +284,9 @@ TEST_F(LghBuild, ManyLevelsUseTheCooperativeGather) {
   // 7 levels: levels >= 4 gather with one work group per (vertex, chunk of rows), several chunks
   // per vertex from level 5 on.
   const auto lights = lgh::sampleSurfaceVpls(lgh::makeDemoScene(), {20000, 4, 10.0F});
-  for (LghAtomics atomics : kAtomics)
+  for (LghAtomics atomics : kAtomics) {
     expectMatchesReference(lights, settings(7, Method::Gather, atomics));
+  }
 }
 
 TEST_F(LghBuild, SplitLevelsEqualsOneDispatch) {

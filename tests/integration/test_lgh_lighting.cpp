@@ -217,7 +217,7 @@ TEST_F(LghLighting, GpuReservoirMatchesMirrorAndWeights) {
   glNamedBufferStorage(weightBuffer.id(), static_cast<GLsizeiptr>(weights.size() * sizeof(float)),
                        weights.data(), 0);
   lgh::gl::Buffer choiceBuffer;
-  std::vector<std::uint32_t> choices(kPixels * kSamples);
+  std::vector<std::uint32_t> choices(std::size_t{kPixels} * kSamples);
   glNamedBufferStorage(choiceBuffer.id(), static_cast<GLsizeiptr>(choices.size() * 4), nullptr, 0);
   glUseProgram(program.id());
   glUniform1ui(glGetUniformLocation(program.id(), "uPixels"), kPixels);

@@ -265,8 +265,10 @@ TEST(ImageIoExr, StampsCaptureDateWhenNoneGiven) {
 TEST(ImageIoMetadata, RejectsKeysOneBackendCannotStore) {
   const Image8 png = patternImage8(2, 2, 3, 1);
   const FloatImage exr = gradientImage(2, 2);
-  auto pngWith = [&](ImageMetadata m) { return [&png, m] { image_io::encodePng(png, m); }; };
-  auto exrWith = [&](ImageMetadata m) { return [&exr, m] { image_io::encodeExr(exr, true, m); }; };
+  auto pngWith = [&](const ImageMetadata& m) { return [&png, m] { image_io::encodePng(png, m); }; };
+  auto exrWith = [&](const ImageMetadata& m) {
+    return [&exr, m] { image_io::encodeExr(exr, true, m); };
+  };
   EXPECT_EQ(errorCodeOf(pngWith({{"DateTime", "now"}})), ErrorCode::Invalid);
   EXPECT_EQ(errorCodeOf(pngWith({{"oiio:ColorSpace", "sRGB"}})), ErrorCode::Invalid);
   EXPECT_EQ(errorCodeOf(pngWith({{"", "empty key"}})), ErrorCode::Invalid);
@@ -451,8 +453,9 @@ void appendExrAttribute(Bytes& exr, const std::string& name, const std::string& 
 Bytes exrWithDataWindow(std::int32_t xMax, std::int32_t yMax) {
   Bytes exr = {0x76, 0x2F, 0x31, 0x01, 2, 0, 0, 0};
   Bytes box;
-  for (std::int32_t v : {0, 0, xMax, yMax})
+  for (std::int32_t v : {0, 0, xMax, yMax}) {
     appendLittleEndian32(box, static_cast<std::uint32_t>(v));
+  }
   appendExrAttribute(exr, "dataWindow", "box2i", 16, box);
   return exr;
 }

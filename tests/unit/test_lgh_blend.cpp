@@ -74,8 +74,9 @@ TEST(LghBlend, TopLevelShape) {
 }
 
 TEST(LghBlend, SingleLevelIsOneEverywhere) {
-  for (float d : {0.0F, 0.1F, 5.0F, 1.0e9F})
+  for (float d : {0.0F, 0.1F, 5.0F, 1.0e9F}) {
     EXPECT_FLOAT_EQ(lgh::lghBlend(d, 3, 3, 3, 1.0F, 1.0F), 1.0F);
+  }
 }
 
 TEST(LghBlend, ZeroOutsideLevelsAndInfluenceRadius) {

@@ -50,8 +50,9 @@ void expectInvariants(const std::vector<PointLight>& lights, const LghReference&
       }
       EXPECT_GT(l.luminance, 0.0);
     }
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < 3; ++c) {
       EXPECT_NEAR(sum[c], total[c], 1.0e-9 * total[c]) << "level " << level.level;
+    }
   }
   if (ref.levelCount > 0) EXPECT_LE(ref.levels.back().lights.size(), 8U);
 }

@@ -792,7 +792,9 @@ void expectDocumented(const json& schema, const std::string& path) {
         EXPECT_TRUE(child.contains("description") || child.contains("$ref"))
             << path << "/" << key << "/" << name << " has no description";
       }
-      expectDocumented(child, path + "/" + key + "/" + name);
+      std::string childPath = path;
+      childPath.append("/").append(key).append("/").append(name);
+      expectDocumented(child, childPath);
     }
   }
   for (const char* key : {"items", "additionalProperties", "then", "else"}) {

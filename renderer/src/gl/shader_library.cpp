@@ -22,8 +22,9 @@ namespace {
 std::string readSource(const std::string& file) {
   if (const char* dir = std::getenv("LGH_GLSL_DIR"); dir != nullptr && *dir != '\0') {
     std::ifstream in(std::filesystem::path(dir) / file);
-    if (!in)
+    if (!in) {
       throw Error(ErrorCode::Internal, fmt::format("shader file not found in {}", dir), file);
+    }
     std::stringstream text;
     text << in.rdbuf();
     return text.str();

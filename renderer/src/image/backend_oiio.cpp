@@ -56,7 +56,7 @@ std::string_view fileKeyFor(std::string_view oiioName, const KeyAlias (&aliases)
 
 // Runs one ImageOutput into memory. `virtualName` only tells OpenImageIO the format.
 std::vector<std::uint8_t> writeToMemory(const char* virtualName, OIIO::ImageSpec spec,
-                                        OIIO::TypeDesc dataType, const void* data) {
+                                        const OIIO::TypeDesc& dataType, const void* data) {
   std::vector<std::uint8_t> bytes;
   OIIO::Filesystem::IOVecOutput proxy(bytes);
   OIIO::Filesystem::IOProxy* proxyPointer = &proxy;
@@ -139,7 +139,7 @@ std::unique_ptr<OIIO::ImageInput> tryOpen(const std::string& format,
 OpenInput openByProbing(const std::uint8_t* data, std::size_t size, const std::string& what) {
   std::string formats;
   OIIO::getattribute("input_format_list", formats);
-  for (auto format : OIIO::Strutil::splitsv(formats, ",")) {
+  for (const auto& format : OIIO::Strutil::splitsv(formats, ",")) {
     auto proxy = std::make_unique<OIIO::Filesystem::IOMemReader>(data, size);
     std::string ignored;
     if (auto input = tryOpen(std::string(format), *proxy, ignored)) {
@@ -173,13 +173,13 @@ OpenInput openFromMemory(const std::uint8_t* data, std::size_t size, const std::
   return opened;
 }
 
-bool isFloatFormat(OIIO::TypeDesc format) {
+bool isFloatFormat(const OIIO::TypeDesc& format) {
   return format.basetype == OIIO::TypeDesc::HALF || format.basetype == OIIO::TypeDesc::FLOAT ||
          format.basetype == OIIO::TypeDesc::DOUBLE;
 }
 
 // Reads channels [0, channels) of the first subimage, converted to `type`.
-void readPixels(OpenInput& opened, int channels, OIIO::TypeDesc type, void* destination,
+void readPixels(OpenInput& opened, int channels, const OIIO::TypeDesc& type, void* destination,
                 const std::string& what) {
   if (!opened.input->read_image(0, 0, 0, channels, type, destination)) {
     throw Error(ErrorCode::Invalid,

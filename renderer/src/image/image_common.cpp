@@ -85,7 +85,7 @@ std::uint8_t displayChannel(float linear, ToneMap mode, float exposure) {
 
 std::uint8_t linearAlpha8(float alpha) {
   const float clamped = !(alpha > 0.0F) ? 0.0F : std::min(alpha, 1.0F);
-  return static_cast<std::uint8_t>(clamped * 255.0F + 0.5F);
+  return static_cast<std::uint8_t>(std::lround(clamped * 255.0F));
 }
 
 // ---- Files ----
@@ -277,11 +277,11 @@ std::uint64_t pngBitsPerPixel(std::uint8_t bitDepth, std::uint8_t colorType) {
     case 3:  // palette
       return bitDepth;
     case 2:  // RGB
-      return 3U * bitDepth;
+      return std::uint64_t{3} * bitDepth;
     case 4:  // grey + alpha
-      return 2U * bitDepth;
+      return std::uint64_t{2} * bitDepth;
     case 6:  // RGBA
-      return 4U * bitDepth;
+      return std::uint64_t{4} * bitDepth;
     default:
       return 0;
   }

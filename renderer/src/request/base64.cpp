@@ -47,8 +47,9 @@ std::variant<std::vector<std::uint8_t>, DecodeError> decode(std::string_view tex
   using Reason = DecodeError::Reason;
   const std::string_view data = text.substr(0, text.size() - paddingLength(text));
   // Characters first: a line break is better reported as such than as a length problem.
-  if (const auto invalid = firstInvalidCharacter(data))
+  if (const auto invalid = firstInvalidCharacter(data)) {
     return DecodeError{Reason::Character, *invalid};
+  }
   const std::optional<std::size_t> size = decodedSize(text);
   if (!size) return DecodeError{Reason::Length, text.size()};
 

@@ -63,7 +63,7 @@ fs::path resolveAssetPath(const fs::path& root, const std::string& relative,
   std::error_code error;
   // weakly_canonical resolves the symlinks of the existing prefix, so a link that points outside
   // the root is caught even when its target does not exist.
-  const fs::path resolved = fs::weakly_canonical(base / normal, error);
+  fs::path resolved = fs::weakly_canonical(base / normal, error);
   if (error) reject(relative, fmt::format("cannot be resolved ({})", error.message()), field);
   if (!isInside(resolved, base)) reject(relative, "resolves outside the asset root", field);
   const fs::file_status status = fs::status(resolved, error);

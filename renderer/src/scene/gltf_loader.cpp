@@ -319,7 +319,6 @@ const char* describe(Kind kind) {
     case Kind::Bool:
       return "a boolean";
     case Kind::Index:
-      return "a non-negative integer";
     case Kind::Size:
       return "a non-negative integer";
     case Kind::Count:
@@ -787,7 +786,6 @@ bool formatAllowed(Semantic semantic, int componentType, bool normalized, bool q
 const char* allowedFormats(Semantic semantic) {
   switch (semantic) {
     case Semantic::Position:
-      return "VEC3 of FLOAT";
     case Semantic::Normal:
       return "VEC3 of FLOAT";
     case Semantic::Tangent:
@@ -1405,8 +1403,9 @@ class MaterialConverter {
     const auto it = source.extensions.find("KHR_materials_emissive_strength");
     if (it != source.extensions.end() && it->second.Has("emissiveStrength")) {
       const tinygltf::Value& strength = it->second.Get("emissiveStrength");
-      if (strength.IsNumber())
+      if (strength.IsNumber()) {
         factor *= std::max(finiteOr(strength.GetNumberAsDouble(), 1.0F), 0.0F);
+      }
     }
     return factor;
   }
