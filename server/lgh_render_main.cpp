@@ -25,6 +25,7 @@ struct Flags {
   std::string timingsPath;
   int width = 0;
   int height = 0;
+  int pngCompression = -1;  // -1: the request's own
   bool quiet = false;
   int repeat = 1;
   lgh::cli::ContextFlags context;
@@ -70,6 +71,7 @@ nlohmann::json requestJson(const Flags& flags) {
   if (!output.is_object()) return json;  // let validation name it
   if (flags.width > 0) output["width"] = flags.width;
   if (flags.height > 0) output["height"] = flags.height;
+  if (flags.pngCompression >= 0) output["png_compression"] = flags.pngCompression;
   const std::string format = output.value("format", std::string("png"));
   if (endsWith(flags.output, ".png")) {
     output["format"] = "png";
@@ -138,6 +140,9 @@ int main(int argc, char** argv) try {
       ->check(CLI::PositiveNumber);
   app.add_option("--height", flags.height, "override the request's output height")
       ->check(CLI::PositiveNumber);
+  app.add_option("--png-compression", flags.pngCompression,
+                 "override the request's PNG zlib level: 0 (fastest) .. 9 (smallest)")
+      ->check(CLI::Range(0, 9));
   app.add_flag("-q,--quiet", flags.quiet, "print nothing on success");
   app.add_option("--repeat", flags.repeat,
                  "render N times; timings are the per-pass medians of the warm renders 2..N")

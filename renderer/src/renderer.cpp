@@ -23,7 +23,6 @@ struct Renderer::Impl {
   explicit Impl(const RendererOptions& opts)
       : options(opts), context(GlContext::create(opts)), cache(opts), pipeline() {
     device = context->info();
-    device.imageBackend = image_io::backendName();
   }
 
   RendererOptions options;

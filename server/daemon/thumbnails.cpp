@@ -11,9 +11,9 @@ namespace {
 using json = nlohmann::json;
 
 const std::set<std::string> kKnownMembers = {
-    "assets",        "width",   "height", "view_direction",
-    "views",         "margin",  "format", "transparent_background",
-    "name_template", "settings"};
+    "assets",        "width",    "height",         "view_direction",
+    "views",         "margin",   "format",         "transparent_background",
+    "name_template", "settings", "png_compression"};
 
 struct View {
   std::string name;
@@ -112,6 +112,7 @@ json requestJson(const json& body, const View& view) {
                  {"height", body.value("height", json(256))},
                  {"format", "png"},
                  {"transparent_background", body.value("transparent_background", json(false))}};
+  if (body.contains("png_compression")) output["png_compression"] = body["png_compression"];
   json request = {{"camera", std::move(camera)}, {"output", std::move(output)}};
   if (body.contains("settings")) request["settings"] = body["settings"];
   return request;
@@ -123,6 +124,7 @@ std::string batchField(const std::string& field, const std::string& viewField) {
       {"/output/width", "/width"},
       {"/output/height", "/height"},
       {"/output/transparent_background", "/transparent_background"},
+      {"/output/png_compression", "/png_compression"},
       {"/output", "/width"},
       {"/camera/view_direction", ""},
       {"/camera/margin", "/margin"},

@@ -134,6 +134,25 @@ TEST_F(ThumbnailsTest, TransparentBackgroundLeavesAlphaZeroAroundTheModel) {
   EXPECT_EQ(image.pixels8[centre], 255) << "the centre pixel is the box";
 }
 
+TEST_F(ThumbnailsTest, PngCompressionChangesTheSizeNotThePixels) {
+  std::vector<std::string> pngs;
+  for (const int level : {0, 9}) {
+    const json request = {{"assets", {"BoxTextured-glTF-Binary/BoxTextured.glb"}},
+                          {"width", 64},
+                          {"height", 64},
+                          {"png_compression", level}};
+    const auto result = postJson(*http, "/v1/thumbnails", request);
+    ASSERT_TRUE(result);
+    ASSERT_EQ(result->status, 200) << result->body;
+    const auto members = unzip(result->body);
+    ASSERT_EQ(members.size(), 1U);
+    pngs.push_back(members.begin()->second);
+  }
+  EXPECT_GT(pngs[0].size(), 64U * 64U * 3U) << "level 0 stores the rows";
+  EXPECT_LT(pngs[1].size(), pngs[0].size());
+  EXPECT_EQ(decodeBody(pngs[0]).pixels8, decodeBody(pngs[1]).pixels8);
+}
+
 TEST_F(ThumbnailsTest, UploadsAndSeveralViewsWithANameTemplate) {
   const json options = {{"width", 32},
                         {"height", 32},
@@ -184,6 +203,9 @@ TEST_F(ThumbnailsTest, BatchLevelErrors) {
   const json zeroView = {{"assets", {"a.glb"}}, {"view_direction", {0, 0, 0}}};
   EXPECT_EQ(expectError(postJson(*http, "/v1/thumbnails", zeroView), 422, "invalid")["field"],
             "/view_direction");
+  const json badLevel = {{"assets", {"a.glb"}}, {"png_compression", 12}};
+  EXPECT_EQ(expectError(postJson(*http, "/v1/thumbnails", badLevel), 422, "invalid")["field"],
+            "/png_compression");
   const json unknown = {{"assets", {"a.glb"}}, {"colour", "red"}};
   expectError(postJson(*http, "/v1/thumbnails", unknown), 400, "bad_request");
   EXPECT_EQ(http->Get("/healthz")->status, 200);

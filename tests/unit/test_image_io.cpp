@@ -212,6 +212,38 @@ TEST(ImageIoPng, MetadataRoundTrips) {
   EXPECT_EQ(sorted(decoded.metadata), sorted(metadata));
 }
 
+TEST(ImageIoPng, EveryCompressionLevelKeepsThePixels) {
+  // A smooth image compresses well, so the levels' sizes differ visibly.
+  Image8 image{96, 64, 3, {}};
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      for (int c = 0; c < 3; ++c) image.pixels.push_back(static_cast<std::uint8_t>(x + y * c));
+    }
+  }
+  std::vector<std::size_t> sizes;
+  for (int level = 0; level <= 9; ++level) {
+    const Bytes png = image_io::encodePng(image, {}, level);
+    EXPECT_EQ(decodeBytes(png).pixels8, image.pixels) << "level " << level;
+    sizes.push_back(png.size());
+  }
+  EXPECT_GT(sizes[0], image.pixels.size()) << "level 0 stores the rows uncompressed";
+  EXPECT_LT(sizes[9], sizes[1]);
+  EXPECT_LT(sizes[1], sizes[0]);
+}
+
+TEST(ImageIoPng, CompressionLevelOutsideZlibsRangeIsInvalid) {
+  for (const int level : {-1, 10}) {
+    try {
+      image_io::encodePng(patternImage8(4, 4, 3, 1), {}, level);
+      ADD_FAILURE() << "level " << level << " was accepted";
+    } catch (const Error& error) {
+      EXPECT_EQ(error.code(), ErrorCode::Invalid);
+      EXPECT_NE(std::string(error.what()).find(std::to_string(level)), std::string::npos)
+          << error.what();
+    }
+  }
+}
+
 // ---- EXR ----
 
 TEST(ImageIoExr, FloatRoundTripIsExact) {
@@ -351,6 +383,9 @@ TEST(ImageIoEncode, FollowsOutputSettings) {
   output.transparentBackground = true;
   const auto rgba = decodeBytes(encodeImage(image, output));
   EXPECT_EQ(rgba.pixels8, toDisplay8(image, output.toneMap, output.exposure, true).pixels);
+  output.pngCompression = 0;
+  EXPECT_EQ(decodeBytes(encodeImage(image, output)).pixels8, rgba.pixels8);
+  EXPECT_GT(encodeImage(image, output).size(), rgba.pixels8.size()) << "level 0: stored rows";
   output.format = ImageFormat::ExrFloat;
   EXPECT_EQ(decodeBytes(encodeImage(image, output)).pixelsFloat, image.rgba);
   output.format = ImageFormat::ExrHalf;

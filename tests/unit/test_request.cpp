@@ -74,6 +74,7 @@ json describe(const RenderRequest& request) {
         {"format", static_cast<int>(output.format)},
         {"tone_map", static_cast<int>(output.toneMap)},
         {"exposure", output.exposure},
+        {"png_compression", output.pngCompression},
         {"transparent", output.transparentBackground},
         {"background", output.background}}},
       {"settings",
@@ -244,6 +245,8 @@ const BadCase kBadCases[] = {
     {"attenuation_negative", R"({"lights": [{"type": "point", "attenuation": [1, 0, -1]}]})",
      kInvalid, "/lights/0/attenuation/2"},
     {"exposure_0", R"({"output": {"exposure": 0}})", kInvalid, "/output/exposure"},
+    {"png_compression_10", R"({"output": {"png_compression": 10}})", kInvalid,
+     "/output/png_compression"},
     {"margin_below_1", R"({"camera": {"type": "auto", "margin": 0.5}})", kInvalid,
      "/camera/margin"},
     {"outer_cone_too_wide", R"({"lights": [{"type": "spot", "outer_cone_angle": 2}]})", kInvalid,
@@ -419,7 +422,7 @@ TEST(RequestParse, FullRequestBecomesTypedValues) {
     "camera": {"type": "look_at", "position": [0, 2, 5], "target": [0, 1, 0], "up": [0, 0, 1],
                "yfov": 60, "znear": 0.1, "zfar": 100},
     "output": {"width": 1920, "height": 1080, "format": "exr-float", "tone_map": "reinhard",
-               "exposure": 2.5, "transparent_background": true, "background": [0.1, 0.2, 0.3]},
+               "exposure": 2.5, "png_compression": 1, "transparent_background": true, "background": [0.1, 0.2, 0.3]},
     "settings": {"ambient": 0.1,
                  "lgh": {"enabled": true, "vpl_count": 100000, "seed": 4294967295,
                          "vpl_intensity": 3, "alpha": 2, "levels": 5, "method": "scatter",
@@ -461,6 +464,7 @@ TEST(RequestParse, FullRequestBecomesTypedValues) {
   EXPECT_EQ(output.format, ImageFormat::ExrFloat);
   EXPECT_EQ(output.toneMap, ToneMap::Reinhard);
   EXPECT_FLOAT_EQ(output.exposure, 2.5F);
+  EXPECT_EQ(output.pngCompression, 1);
   EXPECT_TRUE(output.transparentBackground);
   EXPECT_EQ(output.background, (std::array<float, 3>{0.1F, 0.2F, 0.3F}));
 

@@ -38,8 +38,9 @@ namespace image_io {
 // Name of the backend compiled in: "oiio" or "lean".
 const char* backendName();
 
-// PNG, 8 bits per channel, channels as given (3 = RGB, 4 = RGBA).
-std::vector<std::uint8_t> encodePng(const Image8& image, const ImageMetadata& metadata = {});
+// PNG, 8 bits per channel, channels as given (3 = RGB, 4 = RGBA); zlib level 0..9.
+std::vector<std::uint8_t> encodePng(const Image8& image, const ImageMetadata& metadata = {},
+                                    int compressionLevel = kDefaultPngCompression);
 // OpenEXR, RGBA, half or float, linear.
 std::vector<std::uint8_t> encodeExr(const FloatImage& image, bool halfFloat,
                                     const ImageMetadata& metadata = {});

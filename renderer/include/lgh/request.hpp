@@ -64,11 +64,14 @@ struct CameraDesc {
 
 enum class ToneMap { None, Reinhard, Aces };
 enum class ImageFormat { Png, ExrHalf, ExrFloat };
+// zlib's own default: a balance of size and speed. Level 1 halves the encode time at 1.5x the size.
+inline constexpr int kDefaultPngCompression = 6;
 
 struct OutputSettings {
   int width = 640;
   int height = 360;
   ImageFormat format = ImageFormat::Png;
+  int pngCompression = kDefaultPngCompression;  // zlib level 0 (none, fastest) .. 9 (smallest)
   ToneMap toneMap = ToneMap::Aces;
   float exposure = 1.0F;
   bool transparentBackground = false;

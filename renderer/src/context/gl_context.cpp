@@ -12,6 +12,7 @@
 #include <spdlog/spdlog.h>
 
 #include "lgh/error.hpp"
+#include "lgh/image.hpp"
 
 namespace lgh {
 
@@ -257,6 +258,9 @@ void GlContext::readGlInfo() {
     const auto* value = reinterpret_cast<const char*>(glGetString(name));
     return std::string(value != nullptr ? value : "");
   };
+  // Not a property of the context, but every client that reports the device (the renderer, the
+  // benchmark) reports it with the GL strings.
+  info_.imageBackend = image_io::backendName();
   info_.glVendor = text(GL_VENDOR);
   info_.glRenderer = text(GL_RENDERER);
   info_.glVersion = text(GL_VERSION);

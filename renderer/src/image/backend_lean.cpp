@@ -142,13 +142,13 @@ constexpr int pngColorType(int channels) {
 
 // ---- PNG encoding ----
 
-bool writePngGuarded(png_structp png, png_infop info, const Image8& image, png_textp text,
-                     int textCount, png_bytepp rows) {
+bool writePngGuarded(png_structp png, png_infop info, const Image8& image, int compressionLevel,
+                     png_textp text, int textCount, png_bytepp rows) {
   if (setjmp(png_jmpbuf(png))) return false;
   png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
                static_cast<png_uint_32>(image.height), 8, pngColorType(image.channels),
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_set_compression_level(png, detail::kPngCompressionLevel);
+  png_set_compression_level(png, compressionLevel);
   png_set_compression_strategy(png, detail::kPngZlibStrategy);
   png_set_filter(png, PNG_FILTER_TYPE_BASE, detail::kPngFilters);
   // OpenImageIO always writes the (zero) image offset; so do we, for byte-identical files.
@@ -440,8 +440,10 @@ Decoded toDecoded(Pixels8&& image) {
 
 const char* backendName() { return "lean"; }
 
-std::vector<std::uint8_t> encodePng(const Image8& image, const ImageMetadata& metadata) {
+std::vector<std::uint8_t> encodePng(const Image8& image, const ImageMetadata& metadata,
+                                    int compressionLevel) {
   detail::checkImage8(image);
+  detail::checkPngCompression(compressionLevel);
   detail::checkMetadata(metadata, MetadataFormat::Png);
   std::vector<std::uint8_t> bytes;
   PngIo io;
@@ -454,7 +456,7 @@ std::vector<std::uint8_t> encodePng(const Image8& image, const ImageMetadata& me
     // libpng's row type is non-const, but it does not modify rows it writes.
     rows[y] = const_cast<png_bytep>(&image.pixels[y * rowBytes]);
   }
-  if (!writePngGuarded(structs.png(), structs.info(), image, text.data(),
+  if (!writePngGuarded(structs.png(), structs.info(), image, compressionLevel, text.data(),
                        static_cast<int>(text.size()), rows.data())) {
     throw Error(ErrorCode::Internal, fmt::format("libpng could not encode: {}", io.error));
   }

@@ -210,14 +210,16 @@ ImageMetadata readMetadata(const OIIO::ImageSpec& spec, const std::string& forma
 
 const char* backendName() { return "oiio"; }
 
-std::vector<std::uint8_t> encodePng(const Image8& image, const ImageMetadata& metadata) {
+std::vector<std::uint8_t> encodePng(const Image8& image, const ImageMetadata& metadata,
+                                    int compressionLevel) {
   detail::checkImage8(image);
+  detail::checkPngCompression(compressionLevel);
   detail::checkMetadata(metadata, MetadataFormat::Png);
   OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::UINT8);
   if (image.channels == 2) spec.alpha_channel = 1;
   // Our pixels are straight (unassociated) alpha, as PNG stores them: no conversion.
   spec.attribute("oiio:UnassociatedAlpha", 1);
-  spec.attribute("png:compressionLevel", detail::kPngCompressionLevel);
+  spec.attribute("png:compressionLevel", compressionLevel);
   spec.attribute("png:filter", detail::kPngFilters);  // zlib strategy: always the default
   for (const auto& [key, value] : metadata) spec.attribute(key, value);
   return writeToMemory("memory.png", spec, OIIO::TypeDesc::UINT8, image.pixels.data());

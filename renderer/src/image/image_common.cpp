@@ -256,6 +256,13 @@ void checkImage8(const Image8& image) {
   }
 }
 
+void checkPngCompression(int level) {
+  if (level < 0 || level > 9) {
+    throw Error(ErrorCode::Invalid,
+                fmt::format("PNG compression level {} is outside zlib's 0..9", level));
+  }
+}
+
 void checkFloatImage(const FloatImage& image) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4) {
@@ -570,7 +577,7 @@ std::vector<std::uint8_t> encodeImage(const FloatImage& linear, const OutputSett
     case ImageFormat::Png:
       return image_io::encodePng(
           toDisplay8(linear, output.toneMap, output.exposure, output.transparentBackground),
-          metadata);
+          metadata, output.pngCompression);
     case ImageFormat::ExrHalf:
       return image_io::encodeExr(linear, true, metadata);
     case ImageFormat::ExrFloat:

@@ -17,10 +17,10 @@ namespace lgh::image_io::detail {
 inline constexpr std::int64_t kMaxDecodeDimension = 16384;
 inline constexpr std::int64_t kMaxDecodePixels = 256LL * 1024 * 1024;
 
-// The same zlib level, zlib strategy and row filters in both backends, so that they write the same
-// bytes. OpenImageIO always uses zlib's default strategy (libpng would pick Z_FILTERED); the
-// filters are libpng's PNG_ALL_FILTERS bit set, spelled out so this header does not need png.h.
-inline constexpr int kPngCompressionLevel = 6;
+// The same zlib strategy and row filters in both backends, so that at the same zlib level they
+// write the same bytes. OpenImageIO always uses zlib's default strategy (libpng would pick
+// Z_FILTERED); the filters are libpng's PNG_ALL_FILTERS bit set, spelled out so this header does
+// not need png.h.
 inline constexpr int kPngZlibStrategy = 0;  // Z_DEFAULT_STRATEGY
 inline constexpr int kPngFilters = 0x08 | 0x10 | 0x20 | 0x40 | 0x80;
 
@@ -51,6 +51,7 @@ void checkExrHeader(const std::uint8_t* data, std::size_t size, const std::strin
 
 // Throws Internal: a malformed in-memory image is a caller bug, not bad user input.
 void checkImage8(const Image8& image);
+void checkPngCompression(int level);
 void checkFloatImage(const FloatImage& image);
 
 enum class MetadataFormat { Png, Exr };

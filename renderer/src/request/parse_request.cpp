@@ -200,6 +200,7 @@ OutputSettings readOutput(const json& object) {
   read(object, "width", output.width);
   read(object, "height", output.height);
   readEnum(object, "format", kImageFormats, output.format);
+  read(object, "png_compression", output.pngCompression);
   readEnum(object, "tone_map", kToneMaps, output.toneMap);
   read(object, "exposure", output.exposure);
   read(object, "transparent_background", output.transparentBackground);

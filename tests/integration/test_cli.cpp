@@ -1,0 +1,162 @@
+// The command-line clients as a user runs them: lgh-render and lgh-bench as real processes on
+// llvmpipe, checked by exit status, output files and messages.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "lgh/image.hpp"
+#include "test_support.hpp"
+
+namespace lgh::test {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+struct ToolRun {
+  int exitCode = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Runs build/server/<tool> with `arguments` (already shell-quoted where needed).
+ToolRun runTool(const std::string& tool, const std::string& arguments) {
+  const fs::path dir = outputDir() / "cli";
+  fs::create_directories(dir);
+  const fs::path out = dir / (tool + ".stdout");
+  const fs::path err = dir / (tool + ".stderr");
+  const std::string command = (fs::path(LGH_BUILD_DIR) / "server" / tool).string() + " " +
+                              arguments + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(command.c_str());
+  ToolRun run;
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.out = slurp(out);
+  run.err = slurp(err);
+  return run;
+}
+
+fs::path outputFile(const std::string& name) {
+  const fs::path path = outputDir() / "cli" / name;
+  fs::create_directories(path.parent_path());
+  fs::remove(path);
+  return path;
+}
+
+image_io::Decoded decodeFile(const fs::path& path) {
+  return image_io::decode(image_io::readFile(path), path.string());
+}
+
+std::size_t countLines(const std::string& text) {
+  std::size_t lines = 0;
+  for (const char c : text) lines += c == '\n' ? 1 : 0;
+  return lines;
+}
+
+TEST(LghRender, DemoWritesThePngTheTimingsAndPrintsTheTable) {
+  const fs::path png = outputFile("demo.png");
+  const fs::path timings = outputFile("demo_timings.json");
+  const ToolRun run =
+      runTool("lgh-render", "--demo -o " + png.string() + " --width 40 --height 30" +
+                                " --timings " + timings.string());
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto image = decodeFile(png);
+  EXPECT_EQ(image.width, 40);
+  EXPECT_EQ(image.height, 30);
+  EXPECT_EQ(image.channels, 3);
+  EXPECT_NE(run.out.find("gbuffer"), std::string::npos) << run.out;
+  const json summary = json::parse(slurp(timings));
+  EXPECT_TRUE(summary.contains("timings")) << summary.dump();
+  EXPECT_TRUE(summary.contains("device")) << summary.dump();
+}
+
+TEST(LghRender, ExrOutputIsLinearFloat) {
+  const fs::path exr = outputFile("demo.exr");
+  const ToolRun run =
+      runTool("lgh-render", "--demo -q -o " + exr.string() + " --width 16 --height 8");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_TRUE(run.out.empty()) << "--quiet printed: " << run.out;
+  const auto image = decodeFile(exr);
+  EXPECT_TRUE(image.isFloat);
+  EXPECT_EQ(image.width, 16);
+}
+
+TEST(LghRender, PngCompressionChangesTheSizeNotThePixels) {
+  const fs::path stored = outputFile("level0.png");
+  const fs::path smallest = outputFile("level9.png");
+  const std::string size = " --width 48 --height 32 -q";
+  ASSERT_EQ(runTool("lgh-render", "--demo -o " + stored.string() + size + " --png-compression 0")
+                .exitCode,
+            0);
+  ASSERT_EQ(runTool("lgh-render", "--demo -o " + smallest.string() + size + " --png-compression 9")
+                .exitCode,
+            0);
+  EXPECT_GT(fs::file_size(stored), 48U * 32U * 3U);
+  EXPECT_LT(fs::file_size(smallest), fs::file_size(stored));
+  EXPECT_EQ(decodeFile(stored).pixels8, decodeFile(smallest).pixels8);
+}
+
+TEST(LghRender, ABadRequestFailsWithOneLineNamingTheField) {
+  const fs::path request = outputFile("bad_request.json");
+  std::ofstream(request) << R"({"output": {"width": -1}})";
+  const ToolRun run =
+      runTool("lgh-render", request.string() + " -o " + outputFile("x.png").string());
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_EQ(countLines(run.err), 1U) << run.err;
+  EXPECT_NE(run.err.find("/output/width"), std::string::npos) << run.err;
+}
+
+TEST(LghRender, MalformedJsonAndMissingFilesNameTheFile) {
+  const fs::path malformed = outputFile("malformed.json");
+  std::ofstream(malformed) << R"({"output": )";
+  const ToolRun broken =
+      runTool("lgh-render", malformed.string() + " -o " + outputFile("x.png").string());
+  EXPECT_EQ(broken.exitCode, 1);
+  EXPECT_NE(broken.err.find("malformed.json"), std::string::npos) << broken.err;
+  const ToolRun missing =
+      runTool("lgh-render", "/nonexistent/request.json -o " + outputFile("x.png").string());
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_NE(missing.err.find("/nonexistent/request.json"), std::string::npos) << missing.err;
+}
+
+TEST(LghRender, UsageErrorsAreRefusedBeforeRendering) {
+  EXPECT_EQ(runTool("lgh-render", "-o x.png").exitCode, 2);
+  const ToolRun level = runTool("lgh-render", "--demo -o x.png --png-compression 12");
+  EXPECT_NE(level.exitCode, 0);
+  EXPECT_NE(level.err.find("png-compression"), std::string::npos) << level.err;
+  const ToolRun help = runTool("lgh-render", "--help");
+  EXPECT_EQ(help.exitCode, 0);
+  EXPECT_NE(help.out.find("--png-compression"), std::string::npos) << help.out;
+}
+
+TEST(LghBench, ConstructPrintsJsonRowsForEachCount) {
+  const ToolRun run =
+      runTool("lgh-bench", "construct --vpls 1000,4000 --iterations 2 --warmup 1 --json");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const json result = json::parse(run.out);
+  EXPECT_EQ(result.at("benchmark"), "lgh-construct");
+  EXPECT_FALSE(result.at("device").at("image_backend").get<std::string>().empty());
+  const json& runs = result.at("runs");
+  ASSERT_EQ(runs.size(), 2U) << runs.dump();
+  EXPECT_EQ(runs[0].at("vpls"), 1000);
+  EXPECT_EQ(runs[1].at("vpls"), 4000);
+  for (const json& row : runs) {
+    EXPECT_GT(row.at("total_ms").get<double>(), 0.0);
+    EXPECT_FALSE(row.at("overflow").get<bool>());
+  }
+  EXPECT_NE(run.err.find("4000"), std::string::npos) << "the table goes to stderr: " << run.err;
+}
+
+}  // namespace
+}  // namespace lgh::test
