@@ -87,6 +87,11 @@ std::string RenderQueue::notReadyReason() const {
   }
 }
 
+std::optional<lgh::VulkanInfo> RenderQueue::vulkan() const {
+  std::lock_guard lock(mutex_);
+  return vulkan_;
+}
+
 std::optional<lgh::DeviceInfo> RenderQueue::device() const {
   std::lock_guard lock(mutex_);
   return device_;
@@ -185,11 +190,14 @@ bool RenderQueue::bringUpRenderer() {
     return false;
   }
   publishCacheStats();
+  lgh::VulkanInfo vulkan = lgh::probeVulkan();
   std::lock_guard lock(mutex_);
+  vulkan_ = std::move(vulkan);
   device_ = renderer_->device();
   state_ = State::Ready;
   logging::event(spdlog::level::info, "ready",
                  {{"device", device_->toJson()},
+                  {"vulkan", vulkan_->toJson()},
                   {"startup_ms", secondsBetween(start, Clock::now()) * 1000.0}});
   return true;
 }

@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "lgh/vulkan_info.hpp"
 #include "metrics.hpp"
 #include "render_ticket.hpp"
 
@@ -61,6 +62,8 @@ class RenderQueue {
   std::string notReadyReason() const;
   // The device the context runs on, once it is up.
   std::optional<lgh::DeviceInfo> device() const;
+  // What Vulkan offers on this machine, probed once on the render thread at start-up.
+  std::optional<lgh::VulkanInfo> vulkan() const;
   // Queue and scene-cache values for /metrics and /v1/info.
   RuntimeGauges gauges() const;
 
@@ -101,6 +104,7 @@ class RenderQueue {
   bool threadDone_ = false;
   std::string failure_;
   std::optional<lgh::DeviceInfo> device_;
+  std::optional<lgh::VulkanInfo> vulkan_;
   lgh::Renderer::CacheStats cacheStats_;
   double averageRenderSeconds_ = 0.1;
   std::thread thread_;

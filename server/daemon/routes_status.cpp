@@ -37,13 +37,13 @@ json cacheJson(const RuntimeGauges& gauges) {
           {"budget_bytes", gauges.sceneCacheBudgetBytes}};
 }
 
-// The renderer has no Vulkan sidecar yet: report that plainly rather than omit the member.
-json vulkanJson() {
-  return {{"available", false},
-          {"api_version", nullptr},
-          {"device", nullptr},
-          {"sidecar_path", nullptr},
-          {"note", "this build has no Vulkan shadow-ray sidecar"}};
+// What the Vulkan loader and drivers offer (null until the render thread has probed them). The
+// renderer has no Vulkan shadow-ray sidecar: say so plainly rather than omit the member.
+json vulkanJson(const std::optional<lgh::VulkanInfo>& vulkan) {
+  json result = vulkan ? vulkan->toJson() : json{{"available", nullptr}};
+  result["sidecar_path"] = nullptr;
+  result["note"] = "this build has no Vulkan shadow-ray sidecar; shadows are not traced";
+  return result;
 }
 
 json infoJson(const DaemonContext& context) {
@@ -55,7 +55,7 @@ json infoJson(const DaemonContext& context) {
           {"ready", reason.empty()},
           {"status", reason.empty() ? "ready" : reason},
           {"device", device ? device->toJson() : json()},
-          {"vulkan", vulkanJson()},
+          {"vulkan", vulkanJson(context.queue.vulkan())},
           {"limits", limitsJson(context.config)},
           {"queue",
            {{"depth", gauges.queueDepth},
