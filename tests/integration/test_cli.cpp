@@ -9,6 +9,8 @@
 #include <sstream>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "lgh/image.hpp"
 #include "test_support.hpp"
 
@@ -33,10 +35,14 @@ std::string slurp(const fs::path& path) {
 
 // Runs build/server/<tool> with `arguments` (already shell-quoted where needed).
 ToolRun runTool(const std::string& tool, const std::string& arguments) {
+  // ctest runs tests in parallel: every call gets its own capture files.
+  static int call = 0;
+  const std::string name = fmt::format(
+      "{}_{}_{}", ::testing::UnitTest::GetInstance()->current_test_info()->name(), tool, ++call);
   const fs::path dir = outputDir() / "cli";
   fs::create_directories(dir);
-  const fs::path out = dir / (tool + ".stdout");
-  const fs::path err = dir / (tool + ".stderr");
+  const fs::path out = dir / (name + ".stdout");
+  const fs::path err = dir / (name + ".stderr");
   const std::string command = (fs::path(LGH_BUILD_DIR) / "server" / tool).string() + " " +
                               arguments + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(command.c_str());
