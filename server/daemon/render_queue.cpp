@@ -27,11 +27,36 @@ RenderQueue::RenderQueue(Options options, Metrics& metrics)
 
 RenderQueue::~RenderQueue() {
   if (thread_.joinable()) stop(std::chrono::seconds(30));
+  endVulkanProbe();
 }
 
 void RenderQueue::start(FatalHandler onFatal) {
   onFatal_ = std::move(onFatal);
   thread_ = std::thread([this] { run(); });
+  // On a thread of its own, not the render thread: NVIDIA's Vulkan driver, loaded into a thread
+  // that has a current EGL context, left that thread without one (lghd then aborted in epoxy at
+  // shutdown on the H100). Off the render thread it also does not delay readiness (~0.3 s there).
+  // The result lives in a shared slot, so a probe stuck in a driver and detached at shutdown never
+  // writes into a destroyed queue.
+  vulkanProbe_ = std::thread([slot = vulkan_] {
+    lgh::VulkanInfo vulkan = lgh::probeVulkan();
+    logging::event(spdlog::level::info, "vulkan", vulkan.toJson());
+    std::lock_guard lock(slot->mutex);
+    slot->info = std::move(vulkan);
+  });
+}
+
+// Joins the probe when it has finished; a probe stuck in a driver call is left to process exit.
+void RenderQueue::endVulkanProbe() {
+  if (!vulkanProbe_.joinable()) return;
+  std::unique_lock lock(vulkan_->mutex);
+  const bool finished = vulkan_->info.has_value();
+  lock.unlock();
+  if (finished) {
+    vulkanProbe_.join();
+  } else {
+    vulkanProbe_.detach();
+  }
 }
 
 // --- HTTP threads -------------------------------------------------------------------------------
@@ -88,8 +113,8 @@ std::string RenderQueue::notReadyReason() const {
 }
 
 std::optional<lgh::VulkanInfo> RenderQueue::vulkan() const {
-  std::lock_guard lock(mutex_);
-  return vulkan_;
+  std::lock_guard lock(vulkan_->mutex);
+  return vulkan_->info;
 }
 
 std::optional<lgh::DeviceInfo> RenderQueue::device() const {
@@ -145,6 +170,7 @@ bool RenderQueue::stop(Clock::duration wait) {
   workCondition_.notify_all();
   const bool done = idleCondition_.wait_for(lock, wait, [this] { return threadDone_; });
   lock.unlock();
+  endVulkanProbe();
   if (!thread_.joinable()) return true;
   if (!done) {
     thread_.detach();  // stuck in a driver call; the process is about to exit
@@ -190,14 +216,11 @@ bool RenderQueue::bringUpRenderer() {
     return false;
   }
   publishCacheStats();
-  lgh::VulkanInfo vulkan = lgh::probeVulkan();
   std::lock_guard lock(mutex_);
-  vulkan_ = std::move(vulkan);
   device_ = renderer_->device();
   state_ = State::Ready;
   logging::event(spdlog::level::info, "ready",
                  {{"device", device_->toJson()},
-                  {"vulkan", vulkan_->toJson()},
                   {"startup_ms", secondsBetween(start, Clock::now()) * 1000.0}});
   return true;
 }

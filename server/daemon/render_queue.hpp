@@ -62,7 +62,7 @@ class RenderQueue {
   std::string notReadyReason() const;
   // The device the context runs on, once it is up.
   std::optional<lgh::DeviceInfo> device() const;
-  // What Vulkan offers on this machine, probed once on the render thread at start-up.
+  // What Vulkan offers on this machine, probed once at start-up (empty until the probe is done).
   std::optional<lgh::VulkanInfo> vulkan() const;
   // Queue and scene-cache values for /metrics and /v1/info.
   RuntimeGauges gauges() const;
@@ -78,6 +78,7 @@ class RenderQueue {
   enum class State { Starting, Ready, Failed };
 
   void run();
+  void endVulkanProbe();
   bool bringUpRenderer();
   void recoverRenderer(const std::string& reason);
   std::shared_ptr<RenderJob> takeJob();
@@ -104,7 +105,12 @@ class RenderQueue {
   bool threadDone_ = false;
   std::string failure_;
   std::optional<lgh::DeviceInfo> device_;
-  std::optional<lgh::VulkanInfo> vulkan_;
+  struct VulkanSlot {
+    std::mutex mutex;
+    std::optional<lgh::VulkanInfo> info;
+  };
+  std::shared_ptr<VulkanSlot> vulkan_ = std::make_shared<VulkanSlot>();
+  std::thread vulkanProbe_;
   lgh::Renderer::CacheStats cacheStats_;
   double averageRenderSeconds_ = 0.1;
   std::thread thread_;
