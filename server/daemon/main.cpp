@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <string_view>
 #include <thread>
 
 #include <spdlog/spdlog.h>
@@ -17,6 +18,7 @@
 #include "server.hpp"
 #include "shutdown.hpp"
 #include "version.hpp"
+#include "vulkan_probe_process.hpp"
 
 namespace lghd {
 namespace {
@@ -95,6 +97,9 @@ int serve(const DaemonConfig& config) {
 }  // namespace lghd
 
 int main(int argc, char** argv) {
+  if (argc == 2 && std::string_view(argv[1]) == lghd::kProbeVulkanFlag) {
+    return lghd::printVulkanProbe();
+  }
   lghd::ParsedConfig parsed = lghd::parseConfig(argc, argv);
   if (!parsed.config) return parsed.exitCode;
   lghd::logging::setUp(parsed.config->context.logLevel, parsed.config->logFormat);

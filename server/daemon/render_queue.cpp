@@ -1,10 +1,12 @@
 #include "render_queue.hpp"
 
 #include <cmath>
+#include <csignal>
 
 #include <fmt/format.h>
 
 #include "logging.hpp"
+#include "vulkan_probe_process.hpp"
 
 namespace lghd {
 namespace {
@@ -33,13 +35,11 @@ RenderQueue::~RenderQueue() {
 void RenderQueue::start(FatalHandler onFatal) {
   onFatal_ = std::move(onFatal);
   thread_ = std::thread([this] { run(); });
-  // On a thread of its own, not the render thread: NVIDIA's Vulkan driver, loaded into a thread
-  // that has a current EGL context, left that thread without one (lghd then aborted in epoxy at
-  // shutdown on the H100). Off the render thread it also does not delay readiness (~0.3 s there).
-  // The result lives in a shared slot, so a probe stuck in a driver and detached at shutdown never
-  // writes into a destroyed queue.
+  // In a child process (see vulkan_probe_process.hpp), waited for on a thread of its own so that
+  // readiness does not wait for it (~0.3 s on the H100). The result lives in a shared slot, so a
+  // probe detached at shutdown never writes into a destroyed queue.
   vulkanProbe_ = std::thread([slot = vulkan_] {
-    lgh::VulkanInfo vulkan = lgh::probeVulkan();
+    lgh::VulkanInfo vulkan = probeVulkanInChildProcess(slot->child);
     logging::event(spdlog::level::info, "vulkan", vulkan.toJson());
     std::lock_guard lock(slot->mutex);
     slot->info = std::move(vulkan);
@@ -52,11 +52,10 @@ void RenderQueue::endVulkanProbe() {
   std::unique_lock lock(vulkan_->mutex);
   const bool finished = vulkan_->info.has_value();
   lock.unlock();
-  if (finished) {
-    vulkanProbe_.join();
-  } else {
-    vulkanProbe_.detach();
+  if (!finished) {
+    if (const pid_t child = vulkan_->child; child > 0) kill(child, SIGKILL);  // a hung driver
   }
+  vulkanProbe_.join();
 }
 
 // --- HTTP threads -------------------------------------------------------------------------------

@@ -108,6 +108,7 @@ class RenderQueue {
   struct VulkanSlot {
     std::mutex mutex;
     std::optional<lgh::VulkanInfo> info;
+    std::atomic<pid_t> child = 0;  // the probe process while it runs
   };
   std::shared_ptr<VulkanSlot> vulkan_ = std::make_shared<VulkanSlot>();
   std::thread vulkanProbe_;

@@ -2,6 +2,8 @@
 // after each one the daemon still answers /healthz and renders correctly.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <csignal>
 #include <thread>
 
 #include "daemon_process.hpp"
@@ -287,6 +289,24 @@ TEST(ConfigTest, FlagsWinOverEnvironmentVariables) {
   EXPECT_EQ(limits["max_height"], 50);
   EXPECT_EQ(postJson(*http, "/v1/render", {{"output", {{"width", 150}, {"height", 40}}}})->status,
             200);
+}
+
+TEST(VulkanProbeTest, NoVulkanDriverIsReportedAndRenderingGoesOn) {
+  // The loader finds no driver: /v1/info says why, GL rendering is untouched, shutdown is clean.
+  DaemonProcess daemon(
+      {}, {"VK_DRIVER_FILES=/nonexistent/icd.json", "VK_ICD_FILENAMES=/nonexistent/icd.json"});
+  auto http = daemon.client();
+  json vulkan;
+  for (int i = 0; i < 100; ++i) {
+    vulkan = json::parse(http->Get("/v1/info")->body).at("vulkan");
+    if (!vulkan.at("available").is_null()) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_EQ(vulkan.at("available"), false) << vulkan.dump();
+  EXPECT_FALSE(vulkan.value("error", "").empty()) << vulkan.dump();
+  EXPECT_EQ(postJson(*http, "/v1/render", {{"output", {{"width", 16}, {"height", 16}}}})->status,
+            200);
+  EXPECT_EQ(daemon.stop(SIGTERM, std::chrono::seconds(20)), 0) << daemon.log();
 }
 
 TEST(ConfigTest, HelpNamesFlagsAndVariables) {
