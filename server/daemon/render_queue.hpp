@@ -78,6 +78,7 @@ class RenderQueue {
   enum class State { Starting, Ready, Failed };
 
   void run();
+  void releaseVulkanProbe();
   void endVulkanProbe();
   bool bringUpRenderer();
   void recoverRenderer(const std::string& reason);
@@ -107,6 +108,9 @@ class RenderQueue {
   std::optional<lgh::DeviceInfo> device_;
   struct VulkanSlot {
     std::mutex mutex;
+    std::condition_variable released;  // the renderer is up (or failed): the probe may start
+    bool mayStart = false;
+    bool cancelled = false;
     std::optional<lgh::VulkanInfo> info;
     std::atomic<pid_t> child = 0;  // the probe process while it runs
   };
