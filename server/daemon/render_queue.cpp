@@ -45,8 +45,12 @@ void RenderQueue::start(FatalHandler onFatal) {
       if (slot->cancelled) return;
     }
     lgh::VulkanInfo vulkan = probeVulkanInChildProcess(slot->child);
-    logging::event(spdlog::level::info, "vulkan", vulkan.toJson());
     std::lock_guard lock(slot->mutex);
+    if (slot->cancelled && !vulkan.available) {
+      logging::event(spdlog::level::info, "vulkan", {{"error", "probe cancelled at shutdown"}});
+      return;
+    }
+    logging::event(spdlog::level::info, "vulkan", vulkan.toJson());
     slot->info = std::move(vulkan);
   });
 }
