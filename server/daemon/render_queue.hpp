@@ -62,7 +62,7 @@ class RenderQueue {
   std::string notReadyReason() const;
   // The device the context runs on, once it is up.
   std::optional<lgh::DeviceInfo> device() const;
-  // What Vulkan offers on this machine, probed once at start-up (empty until the probe is done).
+  // What Vulkan offers on this machine, probed once after bring-up (empty until the probe is done).
   std::optional<lgh::VulkanInfo> vulkan() const;
   // Queue and scene-cache values for /metrics and /v1/info.
   RuntimeGauges gauges() const;
