@@ -123,8 +123,9 @@ lgh::VulkanInfo probeVulkanInChildProcess(std::atomic<pid_t>& child) {
   const int spawned = posix_spawn(&pid, self.c_str(), &actions, &attributes, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attributes);
-  if (spawned != 0)
+  if (spawned != 0) {
     return failure(fmt::format("cannot start the probe: {}", std::strerror(spawned)));
+  }
   child = pid;
   output.closeWrite();
   const std::string text = readAll(output.readEnd());

@@ -54,7 +54,7 @@ ToolRun runTool(const std::string& tool, const std::string& arguments) {
 }
 
 fs::path outputFile(const std::string& name) {
-  const fs::path path = outputDir() / "cli" / name;
+  fs::path path = outputDir() / "cli" / name;
   fs::create_directories(path.parent_path());
   fs::remove(path);
   return path;
