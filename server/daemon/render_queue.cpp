@@ -41,17 +41,24 @@ void RenderQueue::start(FatalHandler onFatal) {
   vulkanProbe_ = std::thread([slot = vulkan_] {
     {
       std::unique_lock lock(slot->mutex);
-      slot->released.wait(lock, [&] { return slot->mayStart || slot->cancelled; });
-      if (slot->cancelled) return;
+      slot->changed.wait(lock, [&] { return slot->mayStart || slot->cancelled; });
+      if (slot->cancelled) {
+        slot->done = true;
+        return;
+      }
     }
     lgh::VulkanInfo vulkan = probeVulkanInChildProcess(slot->child);
-    std::lock_guard lock(slot->mutex);
-    if (slot->cancelled && !vulkan.available) {
-      logging::event(spdlog::level::info, "vulkan", {{"error", "probe cancelled at shutdown"}});
-      return;
+    {
+      std::lock_guard lock(slot->mutex);
+      if (slot->cancelled && !vulkan.available) {
+        logging::event(spdlog::level::info, "vulkan", {{"error", "probe cancelled at shutdown"}});
+      } else {
+        logging::event(spdlog::level::info, "vulkan", vulkan.toJson());
+        slot->info = std::move(vulkan);
+      }
+      slot->done = true;
     }
-    logging::event(spdlog::level::info, "vulkan", vulkan.toJson());
-    slot->info = std::move(vulkan);
+    slot->changed.notify_all();
   });
 }
 
@@ -60,19 +67,22 @@ void RenderQueue::releaseVulkanProbe() {
     std::lock_guard lock(vulkan_->mutex);
     vulkan_->mayStart = true;
   }
-  vulkan_->released.notify_all();
+  vulkan_->changed.notify_all();
 }
 
-// Cancels a probe that has not started and kills one that has not finished (a hung driver).
+// Cancels a probe that has not started and kills one that has not finished (a hung driver). The
+// child can be spawned just after a look at `child`, so it is looked at again until the probe
+// thread is done.
 void RenderQueue::endVulkanProbe() {
   if (!vulkanProbe_.joinable()) return;
-  std::unique_lock lock(vulkan_->mutex);
-  vulkan_->cancelled = true;
-  const bool finished = vulkan_->info.has_value();
-  lock.unlock();
-  vulkan_->released.notify_all();
-  if (!finished) {
-    if (const pid_t child = vulkan_->child; child > 0) kill(child, SIGKILL);
+  {
+    std::unique_lock lock(vulkan_->mutex);
+    vulkan_->cancelled = true;
+    vulkan_->changed.notify_all();
+    while (!vulkan_->done) {
+      if (const pid_t child = vulkan_->child; child > 0) kill(child, SIGKILL);
+      vulkan_->changed.wait_for(lock, std::chrono::milliseconds(10));
+    }
   }
   vulkanProbe_.join();
 }

@@ -108,9 +108,10 @@ class RenderQueue {
   std::optional<lgh::DeviceInfo> device_;
   struct VulkanSlot {
     std::mutex mutex;
-    std::condition_variable released;  // the renderer is up (or failed): the probe may start
-    bool mayStart = false;
-    bool cancelled = false;
+    std::condition_variable changed;  // signals each of the three flags below
+    bool mayStart = false;            // the renderer is up (or failed): the probe may start
+    bool cancelled = false;           // shutdown: do not start, or give up on the answer
+    bool done = false;                // the probe thread has nothing left to do
     std::optional<lgh::VulkanInfo> info;
     std::atomic<pid_t> child = 0;  // the probe process while it runs
   };
