@@ -1,4 +1,4 @@
-// Lighting Grid Hierarchy buffer layouts (std430). Mirrored in renderer/src/lgh/lgh_types.hpp,
+// Lighting Grid Hierarchy buffer layouts (std430). Mirrored in renderer/src/lightgrid/lgh_types.hpp,
 // where static_asserts pin every size and offset; docs/LGH.md explains the fields.
 //
 // Public part (any shader may include it): PointLight (the build's input), GridLight (its output,

@@ -1,13 +1,11 @@
 #include "frame_pipeline.hpp"
 
-#include <chrono>
-
 #include <glm/gtc/matrix_inverse.hpp>
+
+#include "core/stopwatch.hpp"
 
 namespace lgh {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 LightDesc directionalLight(const glm::vec3& direction, float intensity) {
   LightDesc light;
@@ -41,11 +39,11 @@ FramePipeline::FramePipeline() = default;
 FramePipeline::~FramePipeline() = default;
 
 void FramePipeline::render(const RenderRequest& request, const CachedScene& cached,
-                           gl::GpuTimer& timer, RenderResult& result, LghFrameProbe* probe) {
+                           gl::GpuTimer& timer, FrameReport& report, LghFrameProbe* probe) {
   const OutputSettings& output = request.output;
   const CameraMatrices camera =
       computeCamera(request.camera, cached.scene, output.width, output.height);
-  const std::vector<LightDesc> lights = frameLights(request, cached.scene, camera, result.warnings);
+  const std::vector<LightDesc> lights = frameLights(request, cached.scene, camera, report.warnings);
   const LghSettings& lgh = request.settings.lgh;
   targets_.resize(output.width, output.height);
   {
@@ -58,21 +56,20 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   }
   if (lgh.enabled) {
     if (!lghLighting_) lghLighting_ = std::make_unique<LghFrameLighting>();
-    lghLighting_->run(lgh, cached, camera, targets_, timer, result, probe);
+    lghLighting_->run(lgh, cached, camera, targets_, timer, report, probe);
   }
   {
     gl::ScopedGpuPass pass(timer, "composite");
     compositePass_.run(output, lgh.enabled, targets_);
   }
-  const auto readbackStart = Clock::now();
-  result.image = readbackFinal(targets_);
-  const double readbackMs =
-      std::chrono::duration<double, std::milli>(Clock::now() - readbackStart).count();
+  const Stopwatch readback;
+  report.image = readbackFinal(targets_);
+  const double readbackMs = readback.elapsedMs();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  timer.collect(result.timings);
-  result.timings.add("readback", TimingRow::Clock::Cpu, readbackMs);
-  result.paths["lighting"] = lgh.enabled ? "direct+lgh" : "direct";
-  result.paths["lights"] = std::to_string(lights.size());
+  timer.collect(report.timings);
+  report.timings.add("readback", TimingRow::Clock::Cpu, readbackMs);
+  report.decide("lighting", lgh.enabled ? "direct+lgh" : "direct");
+  report.decide("lights", std::to_string(lights.size()));
 }
 
 }  // namespace lgh

@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "gl/gpu_timer.hpp"
-#include "lgh/renderer.hpp"
+#include "frame_report.hpp"
 #include "passes/composite_pass.hpp"
 #include "passes/direct_lighting_pass.hpp"
 #include "passes/frame_targets.hpp"
@@ -24,7 +24,7 @@ class FramePipeline {
   ~FramePipeline();
   // `probe` (tests and the benchmark) asks an LGH frame for its intermediate results.
   void render(const RenderRequest& request, const CachedScene& scene, gl::GpuTimer& timer,
-              RenderResult& result, LghFrameProbe* probe = nullptr);
+              FrameReport& report, LghFrameProbe* probe = nullptr);
 
  private:
   FrameTargets targets_;

@@ -154,8 +154,8 @@ class BenchmarkSession {
              seconds);
   }
 
-  RenderResult frame(const RenderRequest& request, LghFrameProbe* probe = nullptr) {
-    RenderResult result;
+  FrameReport frame(const RenderRequest& request, LghFrameProbe* probe = nullptr) {
+    FrameReport result;
     gl::GpuTimer timer;
     pipeline_.render(request, *scene_, timer, result, probe);
     return result;
@@ -168,7 +168,7 @@ class BenchmarkSession {
     RunConfig config{vpls, LightingPath::Compute, InterleaveMode::None, 1, false};
     LghFrameProbe probe;
     probe.bruteForce = true;
-    const RenderResult result = frame(benchmarkRequest(options_, config), &probe);
+    const FrameReport result = frame(benchmarkRequest(options_, config), &probe);
     references.push_back({{"vpls", vpls}, {"bruteforce_ms", result.timings.get("lgh reference")}});
     return references_.emplace(vpls, std::move(probe.reference)).first->second;
   }
@@ -243,9 +243,9 @@ std::string progressLine(const nlohmann::json& run) {
 
 nlohmann::json settingsJson(const RenderBenchmarkOptions& o) {
   nlohmann::json paths = nlohmann::json::array();
-  for (LightingPath path : o.paths) paths.push_back(lightingPathName(path));
+  for (LightingPath path : o.paths) paths.push_back(std::string(enumName(path)));
   nlohmann::json interleaves = nlohmann::json::array();
-  for (InterleaveMode mode : o.interleaves) interleaves.push_back(interleaveName(mode));
+  for (InterleaveMode mode : o.interleaves) interleaves.push_back(std::string(enumName(mode)));
   return {{"width", o.width},
           {"height", o.height},
           {"vpls", o.vplCounts},
@@ -280,8 +280,8 @@ nlohmann::json runRenderBenchmark(const RenderBenchmarkOptions& options) {
                                  path == LightingPath::Raster && lockedFor(options, interleave)};
           nlohmann::json run = session.run(config, references);
           run["vpls"] = vpls;
-          run["path"] = lightingPathName(path);
-          run["interleave"] = interleaveName(interleave);
+          run["path"] = std::string(enumName(path));
+          run["interleave"] = std::string(enumName(interleave));
           run["shadow_samples"] = samples;
           run["locked"] = config.locked;
           if (options.progress) options.progress(progressLine(run));

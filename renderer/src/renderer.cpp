@@ -1,23 +1,15 @@
 #include "lgh/renderer.hpp"
 
-#include <chrono>
-
-#include <fmt/format.h>
 #include <spdlog/spdlog.h>
-#include <nlohmann/json.hpp>
 
 #include "context/gl_context.hpp"
+#include "core/stopwatch.hpp"
 #include "frame_pipeline.hpp"
+#include "frame_report.hpp"
 #include "gl/gpu_timer.hpp"
 #include "scene/scene_cache.hpp"
 
 namespace lgh {
-
-using Clock = std::chrono::steady_clock;
-
-static double millisecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 struct Renderer::Impl {
   explicit Impl(const RendererOptions& opts)
@@ -42,57 +34,35 @@ const RendererOptions& Renderer::options() const { return impl_->options; }
 Renderer::CacheStats Renderer::sceneCacheStats() const { return impl_->cache.stats(); }
 
 RenderResult Renderer::render(const RenderRequest& request) {
-  const auto start = Clock::now();
-  RenderResult result;
-  result.device = impl_->device;
-
+  const Stopwatch total;
+  FrameReport report;
   SceneCache::Lookup lookup = impl_->cache.get(request.scene);
-  result.sceneCacheHit = lookup.hit;
-  result.paths["scene_cache"] = lookup.hit ? "hit" : "miss";
-  result.timings.add("scene load", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.loadMs);
-  result.timings.add("upload", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.uploadMs);
-  result.warnings = lookup.entry->scene.warnings;
+  report.decide("scene_cache", lookup.hit ? "hit" : "miss");
+  report.timings.add("scene load", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.loadMs);
+  report.timings.add("upload", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.uploadMs);
+  report.warnings = lookup.entry->scene.warnings;
 
   try {
-    impl_->pipeline.render(request, *lookup.entry, impl_->timer, result);
+    impl_->pipeline.render(request, *lookup.entry, impl_->timer, report);
   } catch (...) {
     impl_->timer.discard();
     throw;
   }
 
-  const auto encodeStart = Clock::now();
+  RenderResult result;
+  result.device = impl_->device;
+  result.sceneCacheHit = lookup.hit;
+  result.image = std::move(report.image);
+  result.timings = std::move(report.timings);
+  result.decisions = std::move(report.decisions);
+  result.warnings = std::move(report.warnings);
+
+  const Stopwatch encode;
   result.encoded = result.encode(request.output);
   result.mimeType = mimeType(request.output.format);
-  result.timings.add("encode", TimingRow::Clock::Cpu, millisecondsSince(encodeStart));
-  result.timings.add("total", TimingRow::Clock::Cpu, millisecondsSince(start));
+  result.timings.add("encode", TimingRow::Clock::Cpu, encode.elapsedMs());
+  result.timings.add("total", TimingRow::Clock::Cpu, total.elapsedMs());
   return result;
-}
-
-nlohmann::json DeviceInfo::toJson() const {
-  return {{"context_path", contextPath},        {"egl_device_index", eglDeviceIndex},
-          {"egl_device_count", eglDeviceCount}, {"gl_vendor", glVendor},
-          {"gl_renderer", glRenderer},          {"gl_version", glVersion},
-          {"glsl_version", glslVersion},        {"software_renderer", softwareRenderer},
-          {"image_backend", imageBackend}};
-}
-
-ImageMetadata RenderResult::metadata() const {
-  return {{"Software", "lghd " LGH_VERSION},
-          {"lgh:gl_renderer", device.glRenderer},
-          {"lgh:context_path", device.contextPath},
-          {"lgh:timings", timings.toJson().dump()}};
-}
-
-std::vector<std::uint8_t> RenderResult::encode(const OutputSettings& output) const {
-  return encodeImage(image, output, metadata());
-}
-
-nlohmann::json RenderResult::summaryJson() const {
-  return {{"timings", timings.toJson()},
-          {"device", device.toJson()},
-          {"paths", paths},
-          {"warnings", warnings},
-          {"scene_cache_hit", sceneCacheHit}};
 }
 
 }  // namespace lgh

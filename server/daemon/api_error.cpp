@@ -10,8 +10,28 @@ nlohmann::json ApiError::body(const std::string& requestId) const {
   return {{"error", std::move(error)}};
 }
 
+int httpStatus(lgh::ErrorCode code) {
+  switch (code) {
+    case lgh::ErrorCode::BadRequest:
+      return 400;
+    case lgh::ErrorCode::NotFound:
+      return 404;
+    case lgh::ErrorCode::TooLarge:
+      return 413;
+    case lgh::ErrorCode::Invalid:
+      return 422;
+    case lgh::ErrorCode::Unavailable:
+      return 503;
+    case lgh::ErrorCode::Timeout:
+      return 504;
+    case lgh::ErrorCode::Internal:
+      return 500;
+  }
+  return 500;  // a value outside the enum: treat as a bug
+}
+
 ApiError fromLghError(const lgh::Error& error) {
-  return ApiError(lgh::httpStatus(error.code()), lgh::errorCodeName(error.code()), error.message(),
+  return ApiError(httpStatus(error.code()), lgh::errorCodeName(error.code()), error.message(),
                   error.field());
 }
 

@@ -43,6 +43,8 @@ class ApiError : public std::runtime_error {
   int retryAfter_ = 0;
 };
 
+// The HTTP status of a renderer error: 400, 404, 413, 422, 503, 504, 500.
+int httpStatus(lgh::ErrorCode code);
 ApiError fromLghError(const lgh::Error& error);
 
 // The errors the daemon raises itself, by status.

@@ -40,7 +40,7 @@ void setRenderHeaders(httplib::Response& response, const RenderAnswer& answer) {
   response.set_header("X-Lgh-Cache", result.sceneCacheHit ? "hit" : "miss");
   response.set_header("X-Lgh-Queue-Ms", fmt::format("{:.3f}", answer.queueMs));
   response.set_header("X-Lgh-Render-Ms", fmt::format("{:.3f}", result.timings.get("total")));
-  response.set_header("X-Lgh-Paths", headerJson(result.paths));
+  response.set_header("X-Lgh-Paths", headerJson(result.decisions));
   response.set_header("X-Lgh-Warnings", headerJson(result.warnings));
 }
 
@@ -52,7 +52,7 @@ nlohmann::json renderResponseJson(const RenderAnswer& answer) {
           {"height", answer.height},
           {"timings", result.timings.toJson()},
           {"device", result.device.toJson()},
-          {"paths", result.paths},
+          {"paths", result.decisions},
           {"warnings", result.warnings},
           {"request_id", answer.requestId}};
 }

@@ -38,7 +38,7 @@ constexpr double kMaxPathDifference = 2e-3;  // relative RMSE, raster vs compute
 constexpr double kMinPValue = 1e-3;
 
 struct Frame {
-  lgh::RenderResult result;
+  lgh::FrameReport result;
   lgh::LghFrameProbe probe;
 };
 
@@ -148,8 +148,8 @@ TEST_F(LghLighting, RasterAndComputeAgree) {
     const Frame raster = render(options);
     options.path = "compute";
     const Frame compute = render(options);
-    EXPECT_EQ(raster.result.paths.at("lgh_lighting"), "raster");
-    EXPECT_EQ(compute.result.paths.at("lgh_lighting"), "compute");
+    EXPECT_EQ(raster.result.decisions.at("lgh_lighting"), "raster");
+    EXPECT_EQ(compute.result.decisions.at("lgh_lighting"), "compute");
     // llvmpipe shades the fragments of a pixel in primitive order: even unlocked, the raster
     // reservoir sees the lights in the compute path's order. A GPU shades fragments of one pixel
     // concurrently: unlocked, reservoir updates race and get lost (the paper's trade-off; on the
@@ -169,7 +169,7 @@ TEST_F(LghLighting, LockedReservoirAgreesWithCompute) {
   options.path = "compute";
   const Frame compute = render(options);
   // Interlock and the spin lock both keep every update; interlock also keeps primitive order.
-  const std::string lock = raster.result.paths.at("lgh_reservoir_lock");
+  const std::string lock = raster.result.decisions.at("lgh_reservoir_lock");
   std::cout << "[ lgh ] raster reservoir lock: " << lock << '\n';
   const bool ordered = lock == "interlock" || context->info().softwareRenderer;
   expectPathsAgree(raster, compute, "locked", ordered ? 0.99 : 0.0, 1e-4);
@@ -322,24 +322,24 @@ TEST_F(LghLighting, RecordsTimingsAndPaths) {
                            "lgh interleave composite", "composite"}) {
     EXPECT_GE(raster.result.timings.get(pass), 0.0) << pass;
   }
-  EXPECT_EQ(raster.result.paths.at("lgh_lighting_choice"), "configured");
-  EXPECT_EQ(raster.result.paths.at("interleave"), "2x2");
+  EXPECT_EQ(raster.result.decisions.at("lgh_lighting_choice"), "configured");
+  EXPECT_EQ(raster.result.decisions.at("interleave"), "2x2");
   options.path = "auto";
   const Frame automatic = render(options, true);
   if (context->info().softwareRenderer) {
-    EXPECT_EQ(automatic.result.paths.at("lgh_lighting"), "compute");
-    EXPECT_EQ(automatic.result.paths.at("lgh_lighting_choice"), "rule");
+    EXPECT_EQ(automatic.result.decisions.at("lgh_lighting"), "compute");
+    EXPECT_EQ(automatic.result.decisions.at("lgh_lighting_choice"), "rule");
   } else {
-    EXPECT_EQ(automatic.result.paths.at("lgh_lighting_choice"), "measured");
+    EXPECT_EQ(automatic.result.decisions.at("lgh_lighting_choice"), "measured");
   }
-  EXPECT_EQ(automatic.result.paths.at("reference"), "brute-force");
+  EXPECT_EQ(automatic.result.decisions.at("reference"), "brute-force");
 }
 
 TEST_F(LghLighting, NoVplsMeansNoIndirectLight) {
   Options options;
   options.vpls = 0;
   const Frame frame = render(options);
-  EXPECT_EQ(frame.result.paths.at("lgh_lighting"), "none");
+  EXPECT_EQ(frame.result.decisions.at("lgh_lighting"), "none");
   EXPECT_FALSE(frame.result.warnings.empty());
 }
 

@@ -94,7 +94,7 @@ TEST_F(GoldenRender, SecondRenderOfSameSceneHitsCache) {
   renderer->render(lgh::parseRenderRequest(request));
   lgh::RenderResult second = renderer->render(lgh::parseRenderRequest(request));
   EXPECT_TRUE(second.sceneCacheHit);
-  EXPECT_EQ(second.paths.at("scene_cache"), "hit");
+  EXPECT_EQ(second.decisions.at("scene_cache"), "hit");
 }
 
 TEST_F(GoldenRender, BadAssetIsAnErrorAndRendererStaysUsable) {

@@ -1,4 +1,4 @@
-// The CPU reference of the LGH build (renderer/src/lgh/lgh_cpu_reference.hpp) and the VPL
+// The CPU reference of the LGH build (renderer/src/lightgrid/lgh_cpu_reference.hpp) and the VPL
 // sampler: hand-computed cases, the invariants every level must keep (total intensity of the
 // input, centres inside the lights' bounds, variance >= 0, top level <= 8 lights), the paper's
 // auto-level rule, degenerate inputs. Tolerances: 1e-9 relative (double sums of float inputs).
@@ -9,9 +9,9 @@
 #include <limits>
 
 #include "lgh/error.hpp"
-#include "lgh/lgh_cpu_reference.hpp"
-#include "lgh/light_sets.hpp"
-#include "lgh/vpl_sampler.hpp"
+#include "lightgrid/lgh_cpu_reference.hpp"
+#include "lightgrid/light_sets.hpp"
+#include "lightgrid/vpl_sampler.hpp"
 #include "scene/demo_scene.hpp"
 
 namespace {

@@ -1,5 +1,5 @@
 // One error type for everything a caller can get wrong or the renderer can fail at. The daemon
-// maps `code` to an HTTP status; the CLI prints `what()` on one line.
+// maps `code` to an HTTP status (server/daemon/api_error.cpp); the CLI prints `what()` on one line.
 #pragma once
 
 #include <stdexcept>
@@ -37,7 +37,7 @@ class Error : public std::runtime_error {
   std::string field_;
 };
 
-int httpStatus(ErrorCode code);
+// "bad_request", "not_found", ...: the `code` of the daemon's JSON errors and the CLI's messages.
 const char* errorCodeName(ErrorCode code);
 
 }  // namespace lgh

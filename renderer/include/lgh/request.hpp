@@ -11,11 +11,20 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "lgh/enum_names.hpp"
 #include "lgh/error.hpp"
 
 namespace lgh {
 
 enum class LightType { Directional, Point, Spot };
+template <>
+struct EnumNames<LightType> {
+  static constexpr std::array<EnumName<LightType>, 3> names{{
+      {"point", LightType::Point},
+      {"spot", LightType::Spot},
+      {"directional", LightType::Directional},
+  }};
+};
 
 // A light given in the request (beside the ones of the glTF asset). Units follow
 // KHR_lights_punctual: point/spot intensity in candela, directional in lux.
@@ -61,9 +70,37 @@ struct CameraDesc {
   std::array<float, 3> viewDirection{1, 0.6F, 1.4F};
   float margin = 1.1F;  // >1 leaves room around the bounds
 };
+template <>
+struct EnumNames<CameraDesc::Kind> {
+  static constexpr std::array<EnumName<CameraDesc::Kind>, 4> names{{
+      {"look_at", CameraDesc::Kind::LookAt},
+      {"gltf", CameraDesc::Kind::GltfCamera},
+      {"auto", CameraDesc::Kind::Auto},
+      {"default", CameraDesc::Kind::Default},  // not in the schema: the absence of a camera
+  }};
+};
 
 enum class ToneMap { None, Reinhard, Aces };
+template <>
+struct EnumNames<ToneMap> {
+  static constexpr std::array<EnumName<ToneMap>, 3> names{{
+      {"none", ToneMap::None},
+      {"reinhard", ToneMap::Reinhard},
+      {"aces", ToneMap::Aces},
+  }};
+};
+
 enum class ImageFormat { Png, ExrHalf, ExrFloat };
+// "exr" is the half-float EXR: smaller, and enough for a display-referred linear image.
+template <>
+struct EnumNames<ImageFormat> {
+  static constexpr std::array<EnumName<ImageFormat>, 4> names{{
+      {"png", ImageFormat::Png},
+      {"exr", ImageFormat::ExrHalf},
+      {"exr-half", ImageFormat::ExrHalf},
+      {"exr-float", ImageFormat::ExrFloat},
+  }};
+};
 // zlib's own default: a balance of size and speed. Level 1 halves the encode time at 1.5x the size.
 inline constexpr int kDefaultPngCompression = 6;
 
@@ -79,7 +116,34 @@ struct OutputSettings {
 };
 
 enum class InterleaveMode { None, Tiles2x2, Tiles4x4 };
+template <>
+struct EnumNames<InterleaveMode> {
+  static constexpr std::array<EnumName<InterleaveMode>, 3> names{{
+      {"none", InterleaveMode::None},
+      {"2x2", InterleaveMode::Tiles2x2},
+      {"4x4", InterleaveMode::Tiles4x4},
+  }};
+};
+
 enum class LightingPath { Auto, Raster, Compute };
+template <>
+struct EnumNames<LightingPath> {
+  static constexpr std::array<EnumName<LightingPath>, 3> names{{
+      {"auto", LightingPath::Auto},
+      {"raster", LightingPath::Raster},
+      {"compute", LightingPath::Compute},
+  }};
+};
+
+// How the hierarchy's levels above S1 are built (paper Table 1).
+enum class LghBuildMethod { Gather, Scatter };
+template <>
+struct EnumNames<LghBuildMethod> {
+  static constexpr std::array<EnumName<LghBuildMethod>, 2> names{{
+      {"gather", LghBuildMethod::Gather},
+      {"scatter", LghBuildMethod::Scatter},
+  }};
+};
 
 // Many-light settings: the LGH built from point lights (VPLs or request lights) and evaluated over
 // the G-buffer. Consumed by the LGH build and the lighting passes.
@@ -90,7 +154,8 @@ struct LghSettings {
   float vplIntensity = 1.0F;  // total flux scale of the generated VPLs
   float alpha = 1.0F;
   int levels = 0;  // 0: auto (largest L with |S1| < N/2)
-  enum class Method { Gather, Scatter } method = Method::Gather;
+  using Method = LghBuildMethod;
+  Method method = Method::Gather;
   InterleaveMode interleave = InterleaveMode::None;
   LightingPath path = LightingPath::Auto;
   int shadowSamples = 4;  // k, 1..8

@@ -299,28 +299,4 @@ std::unique_ptr<GlContext> GlContext::create(const RendererOptions& options) {
   throw Error(ErrorCode::Unavailable, "no OpenGL context could be created: " + failures);
 }
 
-ContextBackend parseContextBackend(const std::string& name) {
-  if (name == "auto") return ContextBackend::Auto;
-  if (name == "egl-device") return ContextBackend::EglDevice;
-  if (name == "surfaceless") return ContextBackend::Surfaceless;
-  if (name == "osmesa") return ContextBackend::OSMesa;
-  throw Error(ErrorCode::BadRequest,
-              "unknown context backend '" + name + "' (auto, egl-device, surfaceless, osmesa)",
-              "backend");
-}
-
-const char* contextBackendName(ContextBackend backend) {
-  switch (backend) {
-    case ContextBackend::Auto:
-      return "auto";
-    case ContextBackend::EglDevice:
-      return "egl-device";
-    case ContextBackend::Surfaceless:
-      return "surfaceless";
-    case ContextBackend::OSMesa:
-      return "osmesa";
-  }
-  return "?";
-}
-
 }  // namespace lgh

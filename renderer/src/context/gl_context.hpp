@@ -5,7 +5,8 @@
 #include <memory>
 #include <string>
 
-#include "lgh/renderer.hpp"
+#include "lgh/device_info.hpp"
+#include "lgh/renderer_options.hpp"
 
 namespace lgh {
 

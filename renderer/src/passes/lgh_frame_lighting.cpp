@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include "lgh/vpl_sampler.hpp"
+#include "lightgrid/vpl_sampler.hpp"
 
 namespace lgh {
 namespace {
@@ -65,13 +65,13 @@ void LghFrameLighting::uploadVpls(const LghSettings& settings, const CachedScene
 
 void LghFrameLighting::run(const LghSettings& settings, const CachedScene& cached,
                            const CameraMatrices& camera, FrameTargets& frame, gl::GpuTimer& timer,
-                           RenderResult& result, LghFrameProbe* probe) {
-  result.paths["vpls"] = std::to_string(settings.vplCount);
-  result.paths["interleave"] = interleaveName(settings.interleave);
+                           FrameReport& report, LghFrameProbe* probe) {
+  report.decide("vpls", std::to_string(settings.vplCount));
+  report.decide("interleave", std::string(enumName(settings.interleave)));
   if (settings.vplCount <= 0) {
     clearIndirect(frame);
-    result.paths["lgh_lighting"] = "none";
-    result.warnings.emplace_back("LGH lighting enabled with vpl_count 0: no indirect light");
+    report.decide("lgh_lighting", "none");
+    report.warn("LGH lighting enabled with vpl_count 0: no indirect light");
     return;
   }
   uploadVpls(settings, cached);
@@ -83,40 +83,40 @@ void LghFrameLighting::run(const LghSettings& settings, const CachedScene& cache
   LghLightingParams params = LghLightingParams::fromSettings(settings);
   params.overdraw = probe != nullptr && probe->overdraw;
   targets_.resize(frame.width, frame.height, params.interleave, params.samples);
-  const LightingPath path = choosePath(settings.path, params, camera, frame, result);
+  const LightingPath path = choosePath(settings.path, params, camera, frame, report);
   light(path, params, camera, frame, timer);
-  result.paths["lgh_lighting"] = lightingPathName(path);
-  result.paths["lgh_shadow_samples"] = std::to_string(params.samples);
+  report.decide("lgh_lighting", std::string(enumName(path)));
+  report.decide("lgh_shadow_samples", std::to_string(params.samples));
   if (path == LightingPath::Raster && params.locked) {
     const bool interlock = raster_.lockMode(true) == LghRasterLightingPass::LockMode::Interlock;
-    result.paths["lgh_reservoir_lock"] = interlock ? "interlock" : "spin";
+    report.decide("lgh_reservoir_lock", interlock ? "interlock" : "spin");
   } else {
-    result.paths["lgh_reservoir_lock"] = path == LightingPath::Compute ? "owned" : "none";
+    report.decide("lgh_reservoir_lock", path == LightingPath::Compute ? "owned" : "none");
   }
   if (probe != nullptr) {
     probe->path = path;
     readProbe(settings, camera, frame, timer, *probe);
-    if (probe->bruteForce) result.paths["reference"] = "brute-force";
+    if (probe->bruteForce) report.decide("reference", "brute-force");
   }
 }
 
 LightingPath LghFrameLighting::choosePath(LightingPath requested, const LghLightingParams& params,
                                           const CameraMatrices& camera, FrameTargets& frame,
-                                          RenderResult& result) {
+                                          FrameReport& report) {
   if (requested != LightingPath::Auto) {
-    result.paths["lgh_lighting_choice"] = "configured";
+    report.decide("lgh_lighting_choice", "configured");
     return requested;
   }
   if (softwareRasterizer()) {
-    result.paths["lgh_lighting_choice"] = "rule";  // no meaningful GPU timers on llvmpipe
+    report.decide("lgh_lighting_choice", "rule");  // no meaningful GPU timers on llvmpipe
     return LightingPath::Compute;
   }
   if (!measuredPath_) {
     measuredPath_ = measureFasterPath(params, camera, frame);
     spdlog::info("LGH lighting: the {} path measured faster on this device",
-                 lightingPathName(*measuredPath_));
+                 std::string(enumName(*measuredPath_)));
   }
-  result.paths["lgh_lighting_choice"] = "measured";
+  report.decide("lgh_lighting_choice", "measured");
   return *measuredPath_;
 }
 

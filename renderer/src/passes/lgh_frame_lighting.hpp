@@ -3,7 +3,7 @@
 //   inputs:  LghSettings, the scene (VPLs are sampled on its surfaces), camera, the G-buffer
 //   outputs: FrameTargets::indirect (unshadowed LGH lighting), the per-pixel shadow samples in
 //            LghLightingTargets, timing rows ("lgh build" and the builder's steps, "lgh lighting",
-//            "lgh interleave split", "lgh interleave composite") and RenderResult::paths
+//            "lgh interleave split", "lgh interleave composite") and the FrameReport's decisions
 //            ("lgh_lighting" raster|compute, "lgh_lighting_choice", "interleave", "vpls", ...)
 // It owns the VPL buffer (cached per scene, count, seed and intensity), the builder, the lighting
 // passes, and the choice of path: configured by the request, or for `auto` measured once on the
@@ -19,8 +19,8 @@
 #include <glm/glm.hpp>
 
 #include "gl/gpu_timer.hpp"
-#include "lgh/lgh_builder.hpp"
-#include "lgh/renderer.hpp"
+#include "lightgrid/lgh_builder.hpp"
+#include "frame_report.hpp"
 #include "passes/lgh_bruteforce_pass.hpp"
 #include "passes/lgh_compute_lighting_pass.hpp"
 #include "passes/lgh_interleave_pass.hpp"
@@ -55,7 +55,7 @@ class LghFrameLighting {
   LghFrameLighting& operator=(const LghFrameLighting&) = delete;
 
   void run(const LghSettings& settings, const CachedScene& scene, const CameraMatrices& camera,
-           FrameTargets& frame, gl::GpuTimer& timer, RenderResult& result,
+           FrameTargets& frame, gl::GpuTimer& timer, FrameReport& report,
            LghFrameProbe* probe = nullptr);
 
   // Total intensity of the VPLs of a scene: vplIntensity x R^2 with R half the scene's bounding
@@ -75,7 +75,7 @@ class LghFrameLighting {
 
   void uploadVpls(const LghSettings& settings, const CachedScene& scene);
   LightingPath choosePath(LightingPath requested, const LghLightingParams& params,
-                          const CameraMatrices& camera, FrameTargets& frame, RenderResult& result);
+                          const CameraMatrices& camera, FrameTargets& frame, FrameReport& report);
   LightingPath measureFasterPath(const LghLightingParams& params, const CameraMatrices& camera,
                                  FrameTargets& frame);
   void light(LightingPath path, const LghLightingParams& params, const CameraMatrices& camera,

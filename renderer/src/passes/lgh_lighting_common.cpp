@@ -82,30 +82,6 @@ int interleaveFactor(InterleaveMode mode) {
   return 1;
 }
 
-const char* interleaveName(InterleaveMode mode) {
-  switch (mode) {
-    case InterleaveMode::None:
-      return "none";
-    case InterleaveMode::Tiles2x2:
-      return "2x2";
-    case InterleaveMode::Tiles4x4:
-      return "4x4";
-  }
-  return "none";
-}
-
-const char* lightingPathName(LightingPath path) {
-  switch (path) {
-    case LightingPath::Auto:
-      return "auto";
-    case LightingPath::Raster:
-      return "raster";
-    case LightingPath::Compute:
-      return "compute";
-  }
-  return "auto";
-}
-
 void LghLightingTargets::resize(int newWidth, int newHeight, int newInterleave, int newSamples) {
   const bool sizeChanged = newWidth != width || newHeight != height;
   const bool atlasChanged = sizeChanged || newInterleave != interleave || tileWidth == 0;

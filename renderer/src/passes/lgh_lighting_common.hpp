@@ -47,8 +47,6 @@ struct LghLightingParams {
 };
 
 int interleaveFactor(InterleaveMode mode);
-const char* interleaveName(InterleaveMode mode);
-const char* lightingPathName(LightingPath path);
 
 // The hierarchy as LghBuilder leaves it on the GPU.
 struct LghHierarchyBuffers {

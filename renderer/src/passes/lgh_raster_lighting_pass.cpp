@@ -3,7 +3,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/shader_library.hpp"
-#include "lgh/lgh_types.hpp"
+#include "lightgrid/lgh_types.hpp"
 #include "passes/direct_lighting_pass.hpp"
 
 namespace lgh {

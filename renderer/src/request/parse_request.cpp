@@ -117,57 +117,17 @@ void readVec3(const json& object, const char* key, Vec3& out) {
   }
 }
 
-template <typename Enum, std::size_t N>
-void readEnum(const json& object, const char* key,
-              const std::array<std::pair<std::string_view, Enum>, N>& names, Enum& out) {
+// The schema's enum lists and the EnumNames tables agree (a test checks it).
+template <typename Enum>
+void readEnum(const json& object, const char* key, Enum& out) {
   const auto it = object.find(key);
   if (it == object.end()) return;
-  const std::string& name = it->get_ref<const std::string&>();
-  for (const auto& [candidate, value] : names) {
-    if (candidate == name) out = value;
-  }
+  if (const auto value = enumFromName<Enum>(it->get_ref<const std::string&>())) out = *value;
 }
-
-constexpr std::array<std::pair<std::string_view, LightType>, 3> kLightTypes{{
-    {"point", LightType::Point},
-    {"spot", LightType::Spot},
-    {"directional", LightType::Directional},
-}};
-constexpr std::array<std::pair<std::string_view, CameraDesc::Kind>, 3> kCameraKinds{{
-    {"look_at", CameraDesc::Kind::LookAt},
-    {"gltf", CameraDesc::Kind::GltfCamera},
-    {"auto", CameraDesc::Kind::Auto},
-}};
-// "exr" is the half-float EXR: smaller, and enough for a display-referred linear image.
-constexpr std::array<std::pair<std::string_view, ImageFormat>, 4> kImageFormats{{
-    {"png", ImageFormat::Png},
-    {"exr", ImageFormat::ExrHalf},
-    {"exr-half", ImageFormat::ExrHalf},
-    {"exr-float", ImageFormat::ExrFloat},
-}};
-constexpr std::array<std::pair<std::string_view, ToneMap>, 3> kToneMaps{{
-    {"none", ToneMap::None},
-    {"reinhard", ToneMap::Reinhard},
-    {"aces", ToneMap::Aces},
-}};
-constexpr std::array<std::pair<std::string_view, LghSettings::Method>, 2> kMethods{{
-    {"gather", LghSettings::Method::Gather},
-    {"scatter", LghSettings::Method::Scatter},
-}};
-constexpr std::array<std::pair<std::string_view, InterleaveMode>, 3> kInterleaveModes{{
-    {"none", InterleaveMode::None},
-    {"2x2", InterleaveMode::Tiles2x2},
-    {"4x4", InterleaveMode::Tiles4x4},
-}};
-constexpr std::array<std::pair<std::string_view, LightingPath>, 3> kLightingPaths{{
-    {"auto", LightingPath::Auto},
-    {"raster", LightingPath::Raster},
-    {"compute", LightingPath::Compute},
-}};
 
 LightDesc readLight(const json& object) {
   LightDesc light;
-  readEnum(object, "type", kLightTypes, light.type);
+  readEnum(object, "type", light.type);
   readVec3(object, "position", light.position);
   readVec3(object, "direction", light.direction);
   readVec3(object, "color", light.color);
@@ -182,7 +142,7 @@ LightDesc readLight(const json& object) {
 
 CameraDesc readCamera(const json& object) {
   CameraDesc camera;
-  readEnum(object, "type", kCameraKinds, camera.kind);
+  readEnum(object, "type", camera.kind);
   readVec3(object, "position", camera.position);
   readVec3(object, "target", camera.target);
   readVec3(object, "up", camera.up);
@@ -199,9 +159,9 @@ OutputSettings readOutput(const json& object) {
   OutputSettings output;
   read(object, "width", output.width);
   read(object, "height", output.height);
-  readEnum(object, "format", kImageFormats, output.format);
+  readEnum(object, "format", output.format);
   read(object, "png_compression", output.pngCompression);
-  readEnum(object, "tone_map", kToneMaps, output.toneMap);
+  readEnum(object, "tone_map", output.toneMap);
   read(object, "exposure", output.exposure);
   read(object, "transparent_background", output.transparentBackground);
   readVec3(object, "background", output.background);
@@ -218,9 +178,9 @@ LghSettings readLgh(const json& object) {
   if (const auto levels = object.find("levels"); levels != object.end()) {
     lgh.levels = levels->is_string() ? 0 : levels->get<int>();  // the string is "auto"
   }
-  readEnum(object, "method", kMethods, lgh.method);
-  readEnum(object, "interleave", kInterleaveModes, lgh.interleave);
-  readEnum(object, "path", kLightingPaths, lgh.path);
+  readEnum(object, "method", lgh.method);
+  readEnum(object, "interleave", lgh.interleave);
+  readEnum(object, "path", lgh.path);
   read(object, "shadow_samples", lgh.shadowSamples);
   read(object, "sample_s1", lgh.sampleS1);
   read(object, "locked_reservoir", lgh.lockedReservoir);

@@ -1,24 +1,18 @@
 #include "scene/scene_cache.hpp"
 
-#include <chrono>
 #include <filesystem>
 
 #include <epoxy/gl.h>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "core/stopwatch.hpp"
 #include "scene/asset_path.hpp"
 #include "scene/demo_scene.hpp"
 #include "scene/gltf_loader.hpp"
 
 namespace lgh {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 std::uint64_t fnv1a(const std::vector<std::uint8_t>& bytes) {
   std::uint64_t hash = 1469598103934665603ULL;
@@ -95,13 +89,13 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source) {
     return lookup;
   }
   ++misses_;
-  auto loadStart = Clock::now();
+  const Stopwatch loadTimer;
   auto entry = std::make_shared<CachedScene>();
   entry->scene = load(source);
-  lookup.loadMs = millisecondsSince(loadStart);
-  auto uploadStart = Clock::now();
+  lookup.loadMs = loadTimer.elapsedMs();
+  const Stopwatch uploadTimer;
   entry->gpu = std::make_unique<GpuScene>(entry->scene, maxAnisotropy_);
-  lookup.uploadMs = millisecondsSince(uploadStart);
+  lookup.uploadMs = uploadTimer.elapsedMs();
   lookup.entry = entry;
   slots_.push_front({key, entry, entry->gpu->gpuBytes()});
   evictOverBudget();
@@ -118,8 +112,8 @@ void SceneCache::evictOverBudget() {
   }
 }
 
-Renderer::CacheStats SceneCache::stats() const {
-  Renderer::CacheStats stats;
+SceneCacheStats SceneCache::stats() const {
+  SceneCacheStats stats;
   stats.hits = hits_;
   stats.misses = misses_;
   stats.entries = slots_.size();

@@ -8,7 +8,8 @@
 #include <memory>
 #include <string>
 
-#include "lgh/renderer.hpp"
+#include "lgh/renderer_options.hpp"
+#include "lgh/scene_cache_stats.hpp"
 #include "scene/gpu_scene.hpp"
 #include "scene/scene.hpp"
 
@@ -31,7 +32,7 @@ class SceneCache {
   };
   // Loads on a miss; throws lgh::Error for bad assets (nothing is cached then).
   Lookup get(const SceneSource& source);
-  Renderer::CacheStats stats() const;
+  SceneCacheStats stats() const;
 
   // Content key of a source ("" when it cannot be keyed; then it is never cached).
   std::string keyFor(const SceneSource& source) const;

@@ -1,4 +1,4 @@
-#include "lgh/lgh_types.hpp"
+#include "lightgrid/lgh_types.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -16,7 +16,7 @@
 
 #include "gl/gl_objects.hpp"
 #include "gl/gpu_timer.hpp"
-#include "lgh/lgh_types.hpp"
+#include "lightgrid/lgh_types.hpp"
 
 namespace lgh {
 

@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "lgh/lgh_types.hpp"
+#include "lightgrid/lgh_types.hpp"
 
 namespace lgh {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "gl/gl_objects.hpp"
-#include "lgh/lgh_types.hpp"
+#include "lightgrid/lgh_types.hpp"
 #include "scene/scene.hpp"
 
 namespace lgh {

@@ -1,4 +1,4 @@
-#include "lgh/light_sets.hpp"
+#include "lightgrid/light_sets.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "lgh/lgh_cpu_reference.hpp"
+#include "lightgrid/lgh_cpu_reference.hpp"
 
 #include <algorithm>
 #include <cmath>

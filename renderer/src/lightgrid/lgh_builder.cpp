@@ -1,4 +1,4 @@
-#include "lgh/lgh_builder.hpp"
+#include "lightgrid/lgh_builder.hpp"
 
 #include <algorithm>
 #include <optional>

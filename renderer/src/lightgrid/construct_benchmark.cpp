@@ -10,8 +10,8 @@
 #include "gl/gpu_timer.hpp"
 #include "lgh/error.hpp"
 #include "lgh/lgh_benchmark.hpp"
-#include "lgh/lgh_builder.hpp"
-#include "lgh/vpl_sampler.hpp"
+#include "lightgrid/lgh_builder.hpp"
+#include "lightgrid/vpl_sampler.hpp"
 #include "scene/demo_scene.hpp"
 
 namespace lgh {

@@ -1,4 +1,4 @@
-#include "lgh/vpl_sampler.hpp"
+#include "lightgrid/vpl_sampler.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,40 @@
+// How a Renderer is set up: which context path, which GPU, which limits. A vocabulary header: the
+// context and the scene cache read it without seeing the Renderer façade.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+
+#include "lgh/enum_names.hpp"
+
+namespace lgh {
+
+enum class ContextBackend { Auto, EglDevice, Surfaceless, OSMesa };
+
+template <>
+struct EnumNames<ContextBackend> {
+  static constexpr std::array<EnumName<ContextBackend>, 4> names{{
+      {"auto", ContextBackend::Auto},
+      {"egl-device", ContextBackend::EglDevice},
+      {"surfaceless", ContextBackend::Surfaceless},
+      {"osmesa", ContextBackend::OSMesa},
+  }};
+};
+
+// "auto", "egl-device", "surfaceless", "osmesa"; throws lgh::Error(BadRequest) otherwise.
+ContextBackend parseContextBackend(const std::string& name);
+const char* contextBackendName(ContextBackend backend);
+
+struct RendererOptions {
+  ContextBackend backend = ContextBackend::Auto;
+  int gpuIndex = 0;         // EGL device index (EGL's order, not CUDA's)
+  bool requireGpu = false;  // fail instead of running on a software rasterizer
+  bool glDebug = false;     // KHR_debug context; messages go to the log either way
+  std::filesystem::path assetRoot = ".";
+  std::size_t maxTriangles = 20'000'000;
+  int maxTextureSize = 16384;
+  std::size_t sceneCacheBytes = 512ULL << 20;  // GPU memory budget of the scene cache
+};
+
+}  // namespace lgh

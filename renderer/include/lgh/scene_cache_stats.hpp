@@ -1,0 +1,16 @@
+// Counters of the renderer's scene cache, for metrics.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace lgh {
+
+struct SceneCacheStats {
+  std::uint64_t hits = 0;
+  std::uint64_t misses = 0;
+  std::size_t entries = 0;
+  std::size_t bytes = 0;
+};
+
+}  // namespace lgh
