@@ -1,10 +1,9 @@
 // The Vulkan probe of /v1/info, run in a child process (`lghd --probe-vulkan`).
 //
 // Why a process: on the H100, creating a Vulkan instance inside lghd (on the render thread, and
-// also on a thread of its own) left the GL side without a current EGL context as libepoxy sees
-// it, and lghd aborted in epoxy_get_proc_address. A child process keeps the NVIDIA Vulkan driver
-// out of the daemon's address space, and a driver that crashes or hangs there costs nothing but
-// the report.
+// also on a thread of its own) made lghd abort in libepoxy, which then loaded GL; GL is now
+// resolved per context (renderer/src/gl/gl_api.hpp), but the child process also keeps a driver
+// that crashes or hangs out of the daemon's address space: it costs nothing but the report.
 #pragma once
 
 #include <sys/types.h>

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -64,6 +65,10 @@ std::vector<std::string> environmentWith(const std::vector<std::string>& extra) 
   std::vector<std::string> env;
   for (char** entry = environ; *entry != nullptr; ++entry) {
     if (std::strncmp(*entry, "LGHD_", 5) != 0) env.emplace_back(*entry);  // no leaks from outside
+  }
+  // The suite's context path (scripts/run-tests runs it on each) is lghd's LGHD_BACKEND.
+  if (const char* backend = std::getenv("LGH_BACKEND"); backend != nullptr && *backend != 0) {
+    env.push_back(std::string("LGHD_BACKEND=") + backend);
   }
   env.insert(env.end(), extra.begin(), extra.end());
   return env;

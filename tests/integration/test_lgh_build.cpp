@@ -96,7 +96,7 @@ std::string describe(const LghBuildSettings& s) {
 class LghBuild : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    context = lgh::GlContext::create(lgh::RendererOptions{});
+    context = lgh::GlContext::create(lgh::test::rendererOptions());
     builder = std::make_unique<lgh::LghBuilder>();
     buffer = std::make_unique<lgh::gl::SizedBuffer>();
   }

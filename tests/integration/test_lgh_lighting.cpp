@@ -55,7 +55,7 @@ struct Options {
 class LghLighting : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    context = lgh::GlContext::create(lgh::RendererOptions{});
+    context = lgh::GlContext::create(lgh::test::rendererOptions());
     cache = std::make_unique<lgh::SceneCache>(lgh::RendererOptions{});
     pipeline = std::make_unique<lgh::FramePipeline>();
   }

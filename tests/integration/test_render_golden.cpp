@@ -19,7 +19,7 @@ constexpr double kMaxFraction = 0.002;
 class GoldenRender : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    lgh::RendererOptions options;
+    lgh::RendererOptions options = lgh::test::rendererOptions();
     options.assetRoot = lgh::test::assimpGltfDir();
     renderer = std::make_unique<lgh::Renderer>(options);
   }

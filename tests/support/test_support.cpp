@@ -1,5 +1,7 @@
 #include "test_support.hpp"
 
+#include <cstdlib>
+
 namespace lgh::test {
 
 std::filesystem::path dataDir() { return LGH_TEST_DATA_DIR; }
@@ -11,6 +13,14 @@ std::filesystem::path outputDir() {
 }
 
 std::filesystem::path assimpGltfDir() { return "/usr/share/assimp/models/glTF2"; }
+
+RendererOptions rendererOptions() {
+  RendererOptions options;
+  if (const char* backend = std::getenv("LGH_BACKEND"); backend != nullptr && *backend != 0) {
+    options.backend = parseContextBackend(backend);
+  }
+  return options;
+}
 
 }  // namespace lgh::test
 

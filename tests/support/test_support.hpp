@@ -7,6 +7,7 @@
 #include <string>
 
 #include "lgh/image.hpp"
+#include "lgh/renderer_options.hpp"
 
 namespace lgh::test {
 
@@ -16,6 +17,11 @@ std::filesystem::path dataDir();
 std::filesystem::path outputDir();
 // /usr/share/assimp/models/glTF2 (Debian package assimp-testmodels).
 std::filesystem::path assimpGltfDir();
+
+// Renderer options for in-process renderers: the context path comes from LGH_BACKEND when set,
+// as it does for lghd, lgh-render and lgh-bench, so the whole suite runs on any path
+// (scripts/run-tests runs it again with LGH_BACKEND=osmesa).
+RendererOptions rendererOptions();
 
 }  // namespace lgh::test
 

@@ -1,11 +1,6 @@
 #include "context/gl_context.hpp"
 
-#include <epoxy/egl.h>
-#include <epoxy/gl.h>
-
 #include <algorithm>
-#include <array>
-#include <cstring>
 #include <vector>
 
 #include <fmt/format.h>
@@ -15,52 +10,7 @@
 #include "lgh/image.hpp"
 
 namespace lgh {
-
 namespace {
-
-bool hasExtension(const char* list, const char* name) {
-  if (list == nullptr) return false;
-  const size_t length = std::strlen(name);
-  for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += length) {
-    const bool startOk = p == list || p[-1] == ' ';
-    const bool endOk = p[length] == ' ' || p[length] == '\0';
-    if (startOk && endOk) return true;
-  }
-  return false;
-}
-
-std::string eglErrorName(EGLint error) {
-  switch (error) {
-    case EGL_SUCCESS:
-      return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED:
-      return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS:
-      return "EGL_BAD_ACCESS (the device is in use or not accessible: a wrong GPU index, a MIG "
-             "slice, or a container without graphics capability)";
-    case EGL_BAD_ALLOC:
-      return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE:
-      return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG:
-      return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT:
-      return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY:
-      return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH:
-      return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER:
-      return "EGL_BAD_PARAMETER";
-    default:
-      return fmt::format("EGL error 0x{:x}", error);
-  }
-}
-
-[[noreturn]] void failEgl(const std::string& what) {
-  throw Error(ErrorCode::Unavailable,
-              fmt::format("{} failed: {}", what, eglErrorName(eglGetError())));
-}
 
 void GLAPIENTRY debugCallback(GLenum /*source*/, GLenum type, GLuint id, GLenum severity,
                               GLsizei /*length*/, const GLchar* message, const void* /*user*/) {
@@ -73,152 +23,6 @@ void GLAPIENTRY debugCallback(GLenum /*source*/, GLenum type, GLuint id, GLenum 
   spdlog::log(level, "GL debug [{}]: {}", id, message);
 }
 
-class EglContext final : public GlContext {
- public:
-  EglContext(EGLDisplay display, const std::string& path, const RendererOptions& options)
-      : display_(display) {
-    info_.contextPath = path;
-    EGLint major = 0;
-    EGLint minor = 0;
-    if (eglInitialize(display_, &major, &minor) != EGL_TRUE) failEgl("eglInitialize");
-    initialized_ = true;
-    if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) failEgl("eglBindAPI(EGL_OPENGL_API)");
-    createContext(options.glDebug);
-    if (eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) != EGL_TRUE) {
-      failEgl("eglMakeCurrent (surfaceless)");
-    }
-    readGlInfo();
-    installDebugOutput();
-  }
-
-  ~EglContext() override {
-    if (context_ != EGL_NO_CONTEXT) {
-      eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-      eglDestroyContext(display_, context_);
-    }
-    if (initialized_) eglTerminate(display_);
-  }
-
-  void makeCurrent() override {
-    if (eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) != EGL_TRUE) {
-      failEgl("eglMakeCurrent");
-    }
-  }
-
-  EglContext(const EglContext&) = delete;
-  EglContext& operator=(const EglContext&) = delete;
-
- private:
-  void createContext(bool debug) {
-    const char* extensions = eglQueryString(display_, EGL_EXTENSIONS);
-    if (!hasExtension(extensions, "EGL_KHR_surfaceless_context")) {
-      throw Error(ErrorCode::Unavailable, "EGL display lacks EGL_KHR_surfaceless_context");
-    }
-    EGLConfig config = chooseConfig(extensions);
-    // Ask for 4.6 core; Mesa's llvmpipe stops at 4.5, which has everything we use.
-    for (int minor : {6, 5}) {
-      std::vector<EGLint> attributes{
-          EGL_CONTEXT_MAJOR_VERSION,       4,
-          EGL_CONTEXT_MINOR_VERSION,       minor,
-          EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
-      if (debug) attributes.insert(attributes.end(), {EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE});
-      attributes.push_back(EGL_NONE);
-      context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, attributes.data());
-      if (context_ != EGL_NO_CONTEXT) return;
-      spdlog::info("no OpenGL 4.{} core context on {} ({}); trying lower", minor, info_.contextPath,
-                   eglErrorName(eglGetError()));
-    }
-    throw Error(ErrorCode::Unavailable,
-                fmt::format("no OpenGL 4.5+ core context on {}", info_.contextPath));
-  }
-
-  EGLConfig chooseConfig(const char* extensions) {
-    const EGLint attributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
-    EGLConfig config = nullptr;
-    EGLint count = 0;
-    if (eglChooseConfig(display_, attributes, &config, 1, &count) == EGL_TRUE && count > 0) {
-      return config;
-    }
-    if (hasExtension(extensions, "EGL_KHR_no_config_context")) return EGL_NO_CONFIG_KHR;
-    throw Error(ErrorCode::Unavailable, "no EGL config renders OpenGL on " + info_.contextPath);
-  }
-
-  void installDebugOutput() {
-    if (!epoxy_has_gl_extension("GL_KHR_debug") && epoxy_gl_version() < 43) return;
-    glEnable(GL_DEBUG_OUTPUT);
-    glDebugMessageCallback(debugCallback, nullptr);
-  }
-
-  EGLDisplay display_;
-  EGLContext context_ = EGL_NO_CONTEXT;
-  bool initialized_ = false;
-};
-
-std::vector<EGLDeviceEXT> queryEglDevices() {
-  const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  // NVIDIA's EGL (through glvnd) advertises EGL_EXT_device_base, the union of
-  // EGL_EXT_device_enumeration and EGL_EXT_device_query, instead of the two separately.
-  const bool enumeration = hasExtension(clientExtensions, "EGL_EXT_device_enumeration") ||
-                           hasExtension(clientExtensions, "EGL_EXT_device_base");
-  if (!hasExtension(clientExtensions, "EGL_EXT_platform_device") || !enumeration) {
-    throw Error(ErrorCode::Unavailable,
-                fmt::format("EGL has no EGL_EXT_platform_device with EGL_EXT_device_enumeration "
-                            "or EGL_EXT_device_base (is the vendor's EGL ICD JSON installed? In "
-                            "containers, NVIDIA_DRIVER_CAPABILITIES must include 'graphics'); "
-                            "client extensions: {}",
-                            clientExtensions != nullptr ? clientExtensions : "none"));
-  }
-  EGLint count = 0;
-  if (eglQueryDevicesEXT(0, nullptr, &count) != EGL_TRUE) failEgl("eglQueryDevicesEXT");
-  std::vector<EGLDeviceEXT> devices(static_cast<size_t>(count));
-  if (count > 0 && eglQueryDevicesEXT(count, devices.data(), &count) != EGL_TRUE) {
-    failEgl("eglQueryDevicesEXT");
-  }
-  devices.resize(static_cast<size_t>(count));
-  return devices;
-}
-
-std::string describeDevice(EGLDeviceEXT device) {
-  const char* extensions = eglQueryDeviceStringEXT(device, EGL_EXTENSIONS);
-  std::string kind = hasExtension(extensions, "EGL_MESA_device_software") ? "software" : "hardware";
-  if (hasExtension(extensions, "EGL_EXT_device_drm")) {
-    const char* node = eglQueryDeviceStringEXT(device, EGL_DRM_DEVICE_FILE_EXT);
-    if (node != nullptr) kind += std::string(", ") + node;
-  }
-  return kind;
-}
-
-std::unique_ptr<GlContext> createEglDeviceContext(const RendererOptions& options) {
-  auto devices = queryEglDevices();
-  for (size_t i = 0; i < devices.size(); ++i) {
-    spdlog::info("EGL device {}: {}", i, describeDevice(devices[i]));
-  }
-  if (options.gpuIndex < 0 || static_cast<size_t>(options.gpuIndex) >= devices.size()) {
-    throw Error(ErrorCode::Unavailable,
-                fmt::format("GPU index {} out of range: EGL lists {} device(s)", options.gpuIndex,
-                            devices.size()));
-  }
-  EGLDeviceEXT device = devices[static_cast<size_t>(options.gpuIndex)];
-  EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
-  if (display == EGL_NO_DISPLAY) failEgl("eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT)");
-  auto context = std::make_unique<EglContext>(display, "egl-device", options);
-  auto& info = const_cast<DeviceInfo&>(context->info());
-  info.eglDeviceIndex = options.gpuIndex;
-  info.eglDeviceCount = static_cast<int>(devices.size());
-  return context;
-}
-
-std::unique_ptr<GlContext> createSurfacelessContext(const RendererOptions& options) {
-  const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  if (!hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")) {
-    throw Error(ErrorCode::Unavailable, "EGL has no EGL_MESA_platform_surfaceless");
-  }
-  EGLDisplay display =
-      eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-  if (display == EGL_NO_DISPLAY) failEgl("eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA)");
-  return std::make_unique<EglContext>(display, "surfaceless", options);
-}
-
 std::unique_ptr<GlContext> createBackend(ContextBackend backend, const RendererOptions& options) {
   switch (backend) {
     case ContextBackend::EglDevice:
@@ -226,12 +30,7 @@ std::unique_ptr<GlContext> createBackend(ContextBackend backend, const RendererO
     case ContextBackend::Surfaceless:
       return createSurfacelessContext(options);
     case ContextBackend::OSMesa:
-      // libepoxy resolves GL entry points only through a current EGL or GLX context and aborts
-      // otherwise (anholt/libepoxy#163), and Mesa 25.1 removed OSMesa: surfaceless EGL on
-      // llvmpipe is the software path (docs/DEVICES.md).
-      throw Error(ErrorCode::Unavailable,
-                  "the osmesa backend is not supported: libepoxy needs an EGL or GLX context; "
-                  "use --backend surfaceless for software rendering");
+      return createOsmesaContext(options);
     case ContextBackend::Auto:
       break;
   }
@@ -252,6 +51,30 @@ void checkRequirements(const GlContext& context, const RendererOptions& options)
 }
 
 }  // namespace
+
+GlContext::~GlContext() = default;
+
+void GlContext::makeCurrent() {
+  bindPlatform();
+  gl::setCurrentApi(&api_);
+}
+
+void GlContext::releaseApi() {
+  if (gl::currentApi() == &api_) gl::setCurrentApi(nullptr);
+}
+
+void GlContext::loadGl(GLADuserptrloadfunc load, void* userData) {
+  const int version = gladLoadGLContextUserPtr(&api_, load, userData);
+  if (version == 0) {
+    throw Error(ErrorCode::Unavailable,
+                fmt::format("{}: the context's proc-address function gave no glGetString, or the "
+                            "context reports no OpenGL version",
+                            info_.contextPath));
+  }
+  gl::setCurrentApi(&api_);
+  readGlInfo();
+  installDebugOutput();
+}
 
 void GlContext::readGlInfo() {
   auto text = [](GLenum name) {
@@ -274,10 +97,16 @@ void GlContext::readGlInfo() {
                            lower.find("swrast") != std::string::npos;
 }
 
+void GlContext::installDebugOutput() {
+  if (api_.KHR_debug == 0 && api_.VERSION_4_3 == 0) return;
+  glEnable(GL_DEBUG_OUTPUT);
+  glDebugMessageCallback(debugCallback, nullptr);
+}
+
 std::unique_ptr<GlContext> GlContext::create(const RendererOptions& options) {
   std::vector<ContextBackend> order{options.backend};
   if (options.backend == ContextBackend::Auto) {
-    order = {ContextBackend::EglDevice, ContextBackend::Surfaceless};
+    order = {ContextBackend::EglDevice, ContextBackend::Surfaceless, ContextBackend::OSMesa};
   }
   std::string failures;
   for (ContextBackend backend : order) {

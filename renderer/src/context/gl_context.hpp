@@ -1,10 +1,13 @@
-// The headless OpenGL context: the only code that touches EGL (or OSMesa). One context for the
-// life of the process; rendering goes to framebuffer objects, never to a window surface.
+// The headless OpenGL context: the only code that touches EGL or OSMesa. One context for the life
+// of the process; rendering goes to framebuffer objects, never to a window surface. Each context
+// resolves its GL functions through its own proc-address function into the table it owns
+// (gl/gl_api.hpp), and makes that table current with itself.
 #pragma once
 
 #include <memory>
 #include <string>
 
+#include "gl/gl_api.hpp"
 #include "lgh/device_info.hpp"
 #include "lgh/renderer_options.hpp"
 
@@ -17,15 +20,37 @@ class GlContext {
   // Throws lgh::Error(Unavailable) with what each path said when none works.
   static std::unique_ptr<GlContext> create(const RendererOptions& options);
 
-  virtual ~GlContext() = default;
-  virtual void makeCurrent() = 0;
+  virtual ~GlContext();
+  GlContext(const GlContext&) = delete;
+  GlContext& operator=(const GlContext&) = delete;
+
+  // Makes the context and its GL functions current on the calling thread.
+  void makeCurrent();
   const DeviceInfo& info() const { return info_; }
+  const gl::Api& api() const { return api_; }
 
  protected:
   GlContext() = default;
-  // Fills the GL strings of info_ from the current context.
-  void readGlInfo();
+  // The platform's make-current for this context.
+  virtual void bindPlatform() = 0;
+  // Once the context is current for the first time: fills the function table through the
+  // platform's proc-address function, makes it current and reads the GL strings into info_.
+  void loadGl(GLADuserptrloadfunc load, void* userData);
+  // Clears this thread's function table if it is this context's (at destruction).
+  void releaseApi();
   DeviceInfo info_;
+
+ private:
+  void readGlInfo();
+  void installDebugOutput();
+  gl::Api api_{};
 };
+
+// Creates an EGL context on an EGL device (egl-device) or on Mesa's surfaceless platform
+// (context/egl_context.cpp).
+std::unique_ptr<GlContext> createEglDeviceContext(const RendererOptions& options);
+std::unique_ptr<GlContext> createSurfacelessContext(const RendererOptions& options);
+// Creates an OSMesa context (context/osmesa_context.cpp); libOSMesa is loaded at run time.
+std::unique_ptr<GlContext> createOsmesaContext(const RendererOptions& options);
 
 }  // namespace lgh

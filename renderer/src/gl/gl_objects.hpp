@@ -2,7 +2,7 @@
 // destruction; no naked GLuint escapes a pass.
 #pragma once
 
-#include <epoxy/gl.h>
+#include "gl/gl_api.hpp"
 
 #include <utility>
 

@@ -113,7 +113,7 @@ struct LghBuilder::AccumPrograms {
 constexpr GLbitfield kGpuOnly = 0;
 
 LghBuilder::LghBuilder()
-    : floatAtomicsAvailable_(epoxy_has_gl_extension("GL_NV_shader_atomic_float")) {
+    : floatAtomicsAvailable_(gl::api("extension flags").NV_shader_atomic_float != 0) {
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlockBytes_);
   levels_.reserve(sizeof(LghLevelTableGpu), kGpuOnly);
   draws_.reserve(kLghDrawCommands * sizeof(DrawArraysIndirectCommand), kGpuOnly);

@@ -53,7 +53,7 @@ void restoreState() {
 }  // namespace
 
 LghRasterLightingPass::LghRasterLightingPass()
-    : interlockAvailable_(epoxy_has_gl_extension("GL_ARB_fragment_shader_interlock")) {
+    : interlockAvailable_(gl::api("extension flags").ARB_fragment_shader_interlock != 0) {
   tileDraws_.reserve(16 * sizeof(DrawArraysIndirectCommand));
 }
 

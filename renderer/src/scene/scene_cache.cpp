@@ -2,11 +2,11 @@
 
 #include <filesystem>
 
-#include <epoxy/gl.h>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "core/stopwatch.hpp"
+#include "gl/gl_api.hpp"
 #include "scene/asset_path.hpp"
 #include "scene/demo_scene.hpp"
 #include "scene/gltf_loader.hpp"
