@@ -1,0 +1,159 @@
+// The Vulkan side of shadows (DESIGN.md "Data flow" steps 2 and 8; docs/SHADOWS.md): the Vulkan
+// device that is the GL device, the acceleration structures of a scene, and shadow rays traced
+// for a batch of pixels by ray query (a compute shader) or by a ray-tracing pipeline (raygen +
+// miss), with identical results. Runs in the renderer's process, on the render thread.
+//
+// This header sees neither Vulkan nor GL: the frame code (GL) hands rays over in buffers that
+// Vulkan owns and shares with GL, either as exported memory that GL imports (interop: nothing
+// crosses the CPU) or as host-visible memory that GL copies to and from (staging: the fallback
+// where the drivers cannot share, e.g. Mesa's llvmpipe cannot back a GL buffer with lavapipe
+// memory).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "lgh/enum_names.hpp"
+
+namespace lgh {
+struct Scene;
+}
+
+namespace lgh::vk {
+
+enum class TracePath { RayQuery, Pipeline };
+
+using DeviceUuid = std::array<std::uint8_t, 16>;
+
+// What the tracer runs on and can do; reported in /v1/info and the logs.
+struct TracerInfo {
+  std::string deviceName;  // VkPhysicalDeviceProperties::deviceName
+  std::string driverName;  // VkPhysicalDeviceDriverProperties: driverName, driverInfo
+  std::string apiVersion;  // "1.3.289"
+  bool rayQuery = false;            // VK_KHR_ray_query enabled
+  bool rayTracingPipeline = false;  // VK_KHR_ray_tracing_pipeline enabled
+  bool externalMemoryFd = false;    // buffers exportable as opaque fds
+  bool externalSemaphoreFd = false; // semaphores exportable as opaque fds
+  double createMs = 0.0;            // loader + instance + device + pipelines, wall clock
+};
+
+// The acceleration structures of one Scene: a compacted BLAS per mesh (all its primitives,
+// opaque, no face culling) and a TLAS over the scene's instances. Owned by the scene cache next
+// to the GL upload of the same scene.
+class TraceScene {
+ public:
+  virtual ~TraceScene() = default;
+  virtual std::size_t gpuBytes() const = 0;  // device memory held
+  virtual double buildGpuMs() const = 0;     // BLAS + compaction + TLAS, Vulkan timestamps
+  virtual std::size_t triangleCount() const = 0;
+};
+
+// One frame's shadow rays, laid out per pixel (pixel = y * width + x, any row order the caller
+// likes, as long as it is the same for all three buffers):
+//   origins    vec4 per pixel: xyz the ray origin (world space, already offset off the surface);
+//              w > 0: trace this pixel's rays, else none (their bits stay 0).
+//   targets    vec4 per pixel and ray, at [pixel * raysPerPixel + ray]:
+//              w == 1: a point; the ray ends short of xyz by TraceParams::endEpsilon (relative);
+//              w == 0: a direction (need not be unit length) towards a light at infinity;
+//              w <  0: no ray (its bit stays 0).
+//   visibility uint32 per pixel and word, at [pixel * words + ray / 32]: bit ray % 32 is set when
+//              the ray reached its end unoccluded. Every word of every pixel is written.
+struct RayBatchShape {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::uint32_t raysPerPixel = 0;  // 1..kMaxRaysPerPixel
+  std::uint32_t words() const { return (raysPerPixel + 31U) / 32U; }
+  std::uint64_t pixels() const { return std::uint64_t{width} * height; }
+};
+inline constexpr std::uint32_t kMaxRaysPerPixel = 64;
+
+enum class Transport { Interop, Staging };
+
+// A buffer Vulkan owns, as GL gets to see it.
+struct SharedBuffer {
+  std::uint64_t size = 0;  // bytes of the buffer
+  // Interop: the memory as an opaque fd for glImportMemoryFdEXT (the importer owns it: GL closes
+  // it on a successful import; close it yourself otherwise), the size of the memory object
+  // (>= size) and whether it is a dedicated allocation (GL_DEDICATED_MEMORY_OBJECT_EXT).
+  int fd = -1;
+  std::uint64_t allocationSize = 0;
+  bool dedicated = false;
+  // Staging: host-visible, host-coherent memory, mapped for the buffer's life.
+  void* mapped = nullptr;
+};
+
+struct RayBuffers {
+  Transport transport = Transport::Staging;
+  std::uint64_t generation = 0;  // changes whenever the buffers are reallocated
+  SharedBuffer origins;
+  SharedBuffer targets;
+  SharedBuffer visibility;
+};
+
+// Interop semaphores as opaque fds for glImportSemaphoreFdEXT (GL owns them after import):
+// GL signals `glDone` once the origins and targets are written; Vulkan waits on it, traces and
+// signals `vkDone`; GL waits on that before reading the visibility.
+struct SemaphoreFds {
+  int glDone = -1;
+  int vkDone = -1;
+};
+
+struct TraceParams {
+  float tMin = 0.0F;           // where each ray starts along its direction (world units)
+  float tMaxInfinite = 1e30F;  // the length of rays towards lights at infinity
+  float endEpsilon = 1e-3F;    // rays to points stop at (1 - endEpsilon) of the distance
+};
+
+struct TraceTimings {
+  double traceGpuMs = 0.0;  // Vulkan timestamps around the trace
+};
+
+class ShadowTracer {
+ public:
+  // Loads libvulkan.so.1 at run time, picks the physical device whose deviceUUID equals
+  // `glDevice` (the GL context's GL_DEVICE_UUID_EXT), and creates a device with acceleration
+  // structures and every tracing path it offers, and their pipelines. Throws
+  // lgh::Error(Unavailable) that says why not: no loader or ICD, no device with that UUID (naming
+  // the devices found), no acceleration structures, no tracing path.
+  static std::unique_ptr<ShadowTracer> create(const DeviceUuid& glDevice);
+
+  virtual ~ShadowTracer() = default;
+  virtual const TracerInfo& info() const = 0;
+  bool supports(TracePath path) const {
+    return path == TracePath::RayQuery ? info().rayQuery : info().rayTracingPipeline;
+  }
+
+  // Builds the acceleration structures from the CPU scene (positions and indices; every
+  // instance's world transform). Throws lgh::Error(Internal) on a Vulkan failure.
+  virtual std::unique_ptr<TraceScene> buildScene(const Scene& scene) = 0;
+
+  // The ray batch buffers for `shape`, reallocated (new generation, new fds) only when they must
+  // grow or the transport changes. Interop needs info().externalMemoryFd.
+  virtual const RayBuffers& rayBuffers(const RayBatchShape& shape, Transport transport) = 0;
+
+  // A fresh pair of exported semaphores (needs info().externalSemaphoreFd). Once GL has imported
+  // them, trace(..., useSemaphores = true) waits on and signals the pair last exported.
+  virtual SemaphoreFds exportSemaphores() = 0;
+
+  // Traces every ray of the batch in the buffers last returned by rayBuffers(). With
+  // useSemaphores, the GPU waits for GL's `glDone` and signals `vkDone`, and trace() returns once
+  // the work is submitted; otherwise the caller has made the inputs visible (glFinish, or the
+  // staging copy) and trace() returns when the GPU has finished. Timings are read back on the
+  // next call when semaphores were used. Throws lgh::Error(Internal) on a Vulkan failure
+  // (VK_ERROR_DEVICE_LOST included: the tracer must then be created again).
+  virtual TraceTimings trace(const TraceScene& scene, TracePath path, const RayBatchShape& shape,
+                             const TraceParams& params, bool useSemaphores) = 0;
+};
+
+}  // namespace lgh::vk
+
+template <>
+struct lgh::EnumNames<lgh::vk::TracePath> {
+  static constexpr std::array<EnumName<vk::TracePath>, 2> names{{
+      {"ray-query", vk::TracePath::RayQuery},
+      {"pipeline", vk::TracePath::Pipeline},
+  }};
+};
