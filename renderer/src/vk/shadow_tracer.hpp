@@ -141,11 +141,15 @@ class ShadowTracer {
   // Traces every ray of the batch in the buffers last returned by rayBuffers(). With
   // useSemaphores, the GPU waits for GL's `glDone` and signals `vkDone`, and trace() returns once
   // the work is submitted; otherwise the caller has made the inputs visible (glFinish, or the
-  // staging copy) and trace() returns when the GPU has finished. Timings are read back on the
-  // next call when semaphores were used. Throws lgh::Error(Internal) on a Vulkan failure
-  // (VK_ERROR_DEVICE_LOST included: the tracer must then be created again).
-  virtual TraceTimings trace(const TraceScene& scene, TracePath path, const RayBatchShape& shape,
-                             const TraceParams& params, bool useSemaphores) = 0;
+  // staging copy) and trace() returns when the GPU has finished. Several traces may run in one
+  // frame (the brute-force reference traces its lights in chunks). Throws lgh::Error(Internal)
+  // on a Vulkan failure (VK_ERROR_DEVICE_LOST included: the tracer must then be created again).
+  virtual void trace(const TraceScene& scene, TracePath path, const RayBatchShape& shape,
+                     const TraceParams& params, bool useSemaphores) = 0;
+
+  // The GPU time of the traces since the last call (waits for the GPU if they are still
+  // running), summed.
+  virtual TraceTimings collectTimings() = 0;
 };
 
 }  // namespace lgh::vk
