@@ -1,16 +1,21 @@
 #version 450 core
 // Direct lighting pass: every analytic light of the scene evaluated with the glTF BRDF over the
-// G-buffer, plus emission and a constant ambient term. Unshadowed until the Vulkan sidecar lands.
-// Inputs: G-buffer (include/gbuffer.glsl), lights SSBO (binding 0). Output: HDR radiance.
+// G-buffer, times its visibility from the shadow rays (1 for lights without), plus emission and a
+// constant ambient term.
+// Inputs: G-buffer (include/gbuffer.glsl), lights SSBO, shadow-ray visibility bits.
+// Output: HDR radiance.
 
+#define LGH_READ_VISIBILITY
 #include "include/gbuffer.glsl"
 #include "include/lights.glsl"
+#include "include/shadow_rays.glsl"
 
-layout(std430, binding = 0) readonly buffer Lights { Light lights[]; };
+layout(std430, binding = LGH_SLOT_LIGHTS) readonly buffer Lights { Light lights[]; };
 
 uniform int uLightCount;
 uniform vec3 uCameraPosition;
 uniform float uAmbient;
+uniform int uFrameWidth;
 
 layout(location = 0) out vec4 outRadiance;
 
@@ -24,10 +29,13 @@ void main() {
   vec3 toViewer = normalize(uCameraPosition - s.position);
   vec3 radiance = texelFetch(gEmissive, pixel, 0).rgb;
   radiance += uAmbient * s.baseColor * s.occlusion;
+  uint pixelIndex = uint(pixel.y) * uint(uFrameWidth) + uint(pixel.x);
   for (int i = 0; i < uLightCount; ++i) {
     vec3 toLight;
     vec3 incident = incidentLight(lights[i], s.position, toLight);
-    radiance += incident * evaluateBrdfCosine(s, toViewer, toLight);
+    vec3 reflected = incident * evaluateBrdfCosine(s, toViewer, toLight);
+    if (any(greaterThan(reflected, vec3(0.0)))) reflected *= directLightVisibility(pixelIndex, i);
+    radiance += reflected;
   }
   outRadiance = vec4(radiance, 1.0);
 }

@@ -3,6 +3,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "core/stopwatch.hpp"
+#include "passes/light_buffer.hpp"
 
 namespace lgh {
 namespace {
@@ -35,7 +36,7 @@ std::vector<LightDesc> frameLights(const RenderRequest& request, const Scene& sc
   return lights;
 }
 
-FramePipeline::FramePipeline() = default;
+FramePipeline::FramePipeline(ShadowDevice* shadowDevice) : shadows_(shadowDevice) {}
 FramePipeline::~FramePipeline() = default;
 
 void FramePipeline::render(const RenderRequest& request, const CachedScene& cached,
@@ -45,28 +46,41 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
       computeCamera(request.camera, cached.scene, output.width, output.height);
   const std::vector<LightDesc> lights = frameLights(request, cached.scene, camera, report.warnings);
   const LghSettings& lgh = request.settings.lgh;
+  const ShadowSettings& shadowSettings = request.settings.shadows;
   targets_.resize(output.width, output.height);
+  uploadLights(lights, lightBuffer_);
   {
     gl::ScopedGpuPass pass(timer, "gbuffer");
     gbufferPass_.run(cached.scene, *cached.gpu, camera, targets_);
   }
-  {
-    gl::ScopedGpuPass pass(timer, "direct lighting");
-    directLightingPass_.run(lights, camera, request.settings.ambient, targets_);
-  }
+  LghFrameLighting::ShadowSamples samples;
   if (lgh.enabled) {
     if (!lghLighting_) lghLighting_ = std::make_unique<LghFrameLighting>();
     lghLighting_->run(lgh, cached, camera, targets_, timer, report, probe);
+    samples = lghLighting_->shadowSamples();
   }
+  const auto lightCount = static_cast<int>(lights.size());
+  shadows_.trace(
+      {shadowSettings, lgh.seed, lightBuffer_.id(), lightCount, samples.buffer, samples.count},
+      cached, targets_, timer, report);
+  {
+    gl::ScopedGpuPass pass(timer, "direct lighting");
+    directLightingPass_.run({lightBuffer_.id(), lightCount, shadows_.layout(),
+                             shadows_.visibility(), request.settings.ambient},
+                            camera, targets_);
+  }
+  const GLuint shadowRatio =
+      shadows_.filterLgh(shadowSettings.filterIterations, camera, targets_, timer);
   {
     gl::ScopedGpuPass pass(timer, "composite");
-    compositePass_.run(output, lgh.enabled, targets_);
+    compositePass_.run(output, lgh.enabled, shadowRatio, targets_);
   }
   const Stopwatch readback;
   report.image = readbackFinal(targets_);
   const double readbackMs = readback.elapsedMs();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   timer.collect(report.timings);
+  shadows_.collectTimings(report);
   report.timings.add("readback", TimingRow::Clock::Cpu, readbackMs);
   report.decide("lighting", lgh.enabled ? "direct+lgh" : "direct");
   report.decide("lights", std::to_string(lights.size()));

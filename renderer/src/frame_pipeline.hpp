@@ -1,26 +1,29 @@
-// The order of one frame's passes (DESIGN.md, "Data flow of one frame"): G-buffer -> direct
-// lighting -> [VPLs + LGH build + LGH lighting into the indirect target] -> composite ->
-// readback. Owns the passes and the frame targets; the renderer owns the context and the scene
-// cache. The LGH part (passes/lgh_frame_lighting.hpp) is created on the first frame that enables
-// it, so frames without it run exactly as before.
+// The order of one frame's passes (docs/ARCHITECTURE.md, "One frame"): G-buffer -> [VPLs + LGH
+// build + LGH lighting into the indirect target, picking k shadow samples per pixel] -> shadow
+// rays (GL setup, Vulkan trace) -> direct lighting with visibility -> [LGH shadow ratio +
+// filter] -> composite -> readback. Owns the passes and the frame targets; the renderer owns the
+// context and the scene cache. The LGH part (passes/lgh_frame_lighting.hpp) is created on the first
+// frame that enables it, so frames without it run exactly as before.
 #pragma once
 
 #include <memory>
 
-#include "gl/gpu_timer.hpp"
 #include "frame_report.hpp"
+#include "gl/gpu_timer.hpp"
 #include "passes/composite_pass.hpp"
 #include "passes/direct_lighting_pass.hpp"
 #include "passes/frame_targets.hpp"
 #include "passes/gbuffer_pass.hpp"
 #include "passes/lgh_frame_lighting.hpp"
 #include "scene/scene_cache.hpp"
+#include "shadows/shadow_frame.hpp"
 
 namespace lgh {
 
 class FramePipeline {
  public:
-  FramePipeline();
+  // `shadowDevice`: where shadow rays are traced (nullptr: never; frames say so in a warning).
+  explicit FramePipeline(ShadowDevice* shadowDevice = nullptr);
   ~FramePipeline();
   // `probe` (tests and the benchmark) asks an LGH frame for its intermediate results.
   void render(const RenderRequest& request, const CachedScene& scene, gl::GpuTimer& timer,
@@ -28,7 +31,9 @@ class FramePipeline {
 
  private:
   FrameTargets targets_;
+  gl::SizedBuffer lightBuffer_;
   GBufferPass gbufferPass_;
+  ShadowFrame shadows_;
   DirectLightingPass directLightingPass_;
   CompositePass compositePass_;
   std::unique_ptr<LghFrameLighting> lghLighting_;

@@ -8,18 +8,22 @@
 #include "frame_report.hpp"
 #include "gl/gpu_timer.hpp"
 #include "scene/scene_cache.hpp"
+#include "shadows/shadow_device.hpp"
 
 namespace lgh {
 
 struct Renderer::Impl {
   explicit Impl(const RendererOptions& opts)
-      : options(opts), context(GlContext::create(opts)), cache(opts), pipeline() {
+      : options(opts), context(GlContext::create(opts)), cache(opts), pipeline(&shadowDevice) {
     device = context->info();
   }
 
+  // Destroyed in reverse: the GL objects of the frame and the cache go first, then the Vulkan
+  // device that the cache's acceleration structures live on, then the GL context.
   RendererOptions options;
   std::unique_ptr<GlContext> context;
   DeviceInfo device;
+  ShadowDevice shadowDevice;
   SceneCache cache;
   FramePipeline pipeline;
   gl::GpuTimer timer;

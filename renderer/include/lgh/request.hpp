@@ -40,6 +40,10 @@ struct LightDesc {
   float innerConeAngle = 0.0F;
   float outerConeAngle = 0.785398F;
   float spotExponent = 0.0F;  // the lecture's spot effect cos^exponent, added to the cone falloff
+  // Soft shadows: the size of the light as its shadow rays see it (0: hard shadows). Point and
+  // spot lights: radius in world units; directional lights: angular radius in radians.
+  float radius = 0.0F;
+  float angularRadius = 0.0F;
 };
 
 // Where the scene comes from.
@@ -163,8 +167,37 @@ struct LghSettings {
   bool lockedReservoir = false;
 };
 
+// Shadows by ray tracing on the Vulkan side (docs/SHADOWS.md).
+enum class ShadowMode { Auto, On, Off };
+template <>
+struct EnumNames<ShadowMode> {
+  static constexpr std::array<EnumName<ShadowMode>, 3> names{{
+      {"auto", ShadowMode::Auto},  // shadowed where the machine can trace rays, else a warning
+      {"on", ShadowMode::On},      // shadowed, or the request fails (503)
+      {"off", ShadowMode::Off},
+  }};
+};
+
+enum class ShadowTracing { Auto, RayQuery, Pipeline };
+template <>
+struct EnumNames<ShadowTracing> {
+  static constexpr std::array<EnumName<ShadowTracing>, 3> names{{
+      {"auto", ShadowTracing::Auto},
+      {"ray-query", ShadowTracing::RayQuery},
+      {"pipeline", ShadowTracing::Pipeline},
+  }};
+};
+
+struct ShadowSettings {
+  ShadowMode mode = ShadowMode::Auto;
+  ShadowTracing tracing = ShadowTracing::Auto;  // ray query where the device has it
+  int lightSamples = 1;      // shadow rays per direct light and pixel (soft shadows: more)
+  int filterIterations = 4;  // a-trous passes over the LGH shadow ratio (0: unfiltered)
+};
+
 struct RenderSettings {
   float ambient = 0.03F;  // constant ambient term (linear RGB intensity, grey)
+  ShadowSettings shadows;
   LghSettings lgh;
 };
 

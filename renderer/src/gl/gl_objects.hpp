@@ -17,6 +17,8 @@ class Handle {
     if constexpr (requires { Traits::create(); }) id_ = Traits::create();
   }
   explicit Handle(GLenum target) : id_(Traits::create(target)) {}
+  // A handle with no object yet (for objects of extensions that may be missing).
+  static Handle empty() { return Handle(EmptyTag{}); }
   ~Handle() { reset(); }
   Handle(const Handle&) = delete;
   Handle& operator=(const Handle&) = delete;
@@ -35,6 +37,8 @@ class Handle {
   }
 
  private:
+  struct EmptyTag {};
+  explicit Handle(EmptyTag /*tag*/) {}
   GLuint id_ = 0;
 };
 
@@ -95,6 +99,24 @@ struct ShaderTraits {
   static void destroy(GLuint id) { glDeleteShader(id); }
 };
 
+// GL_EXT_memory_object / GL_EXT_semaphore: memory and semaphores imported from Vulkan.
+struct MemoryObjectTraits {
+  static GLuint create() {
+    GLuint id = 0;
+    glCreateMemoryObjectsEXT(1, &id);
+    return id;
+  }
+  static void destroy(GLuint id) { glDeleteMemoryObjectsEXT(1, &id); }
+};
+struct SemaphoreTraits {
+  static GLuint create() {
+    GLuint id = 0;
+    glGenSemaphoresEXT(1, &id);
+    return id;
+  }
+  static void destroy(GLuint id) { glDeleteSemaphoresEXT(1, &id); }
+};
+
 using Buffer = Handle<BufferTraits>;
 using Texture = Handle<TextureTraits>;
 using Framebuffer = Handle<FramebufferTraits>;
@@ -103,6 +125,8 @@ using SamplerObject = Handle<SamplerTraits>;
 using Query = Handle<QueryTraits>;
 using Program = Handle<ProgramTraits>;
 using Shader = Handle<ShaderTraits>;
+using MemoryObject = Handle<MemoryObjectTraits>;
+using Semaphore = Handle<SemaphoreTraits>;
 
 // A buffer with storage of a known size (immutable storage, dynamic updates allowed).
 struct SizedBuffer {

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "gl/shader_library.hpp"
+#include "gl/slots.hpp"
 
 namespace lgh {
 
@@ -10,7 +11,8 @@ CompositePass::CompositePass()
     : program_(gl::buildProgram(
           {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "composite.frag"}})) {}
 
-void CompositePass::run(const OutputSettings& output, bool hasIndirect, FrameTargets& targets) {
+void CompositePass::run(const OutputSettings& output, bool hasIndirect, GLuint shadowRatio,
+                        FrameTargets& targets) {
   glBindFramebuffer(GL_FRAMEBUFFER, targets.finalFramebuffer.id());
   glViewport(0, 0, targets.width, targets.height);
   glDisable(GL_DEPTH_TEST);
@@ -18,6 +20,9 @@ void CompositePass::run(const OutputSettings& output, bool hasIndirect, FrameTar
   const GLuint program = program_.id();
   glUseProgram(program);
   glProgramUniform1i(program, glGetUniformLocation(program, "uHasIndirect"), hasIndirect ? 1 : 0);
+  glProgramUniform1i(program, glGetUniformLocation(program, "uHasShadowRatio"),
+                     shadowRatio != 0 ? 1 : 0);
+  glBindTextureUnit(LGH_SLOT_COMPOSITE_RATIO, shadowRatio);
   const float alpha = output.transparentBackground ? 0.0F : 1.0F;
   const auto& bg = output.background;
   glProgramUniform4f(program, glGetUniformLocation(program, "uBackground"), bg[0] * alpha,

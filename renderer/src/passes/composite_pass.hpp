@@ -1,6 +1,6 @@
 // Composite pass.
-//   inputs:  FrameTargets::direct, FrameTargets::indirect (when LGH lighting ran), G-buffer
-//            coverage, background colour or transparency
+//   inputs:  FrameTargets::direct, FrameTargets::indirect (when LGH lighting ran) and its shadow
+//            ratio (when shadowed), G-buffer coverage, background colour or transparency
 //   outputs: FrameTargets::final (linear RGBA32F), read back by readbackFinal()
 //   shaders: glsl/fullscreen.vert, glsl/composite.frag
 #pragma once
@@ -15,7 +15,9 @@ namespace lgh {
 class CompositePass {
  public:
   CompositePass();
-  void run(const OutputSettings& output, bool hasIndirect, FrameTargets& targets);
+  // `shadowRatio`: the filtered LGH shadow ratio texture, 0 for unshadowed LGH lighting.
+  void run(const OutputSettings& output, bool hasIndirect, GLuint shadowRatio,
+           FrameTargets& targets);
 
  private:
   gl::Program program_;

@@ -5,7 +5,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/shader_library.hpp"
-#include "passes/light_buffer.hpp"
+#include "gl/slots.hpp"
 
 namespace lgh {
 
@@ -20,21 +20,22 @@ DirectLightingPass::DirectLightingPass()
     : program_(gl::buildProgram(
           {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "direct_lighting.frag"}})) {}
 
-void DirectLightingPass::run(const std::vector<LightDesc>& lights, const CameraMatrices& camera,
-                             float ambient, FrameTargets& targets) {
-  uploadLights(lights, lightBuffer_);
+void DirectLightingPass::run(const DirectLightingInputs& inputs, const CameraMatrices& camera,
+                             FrameTargets& targets) {
   glBindFramebuffer(GL_FRAMEBUFFER, targets.directFramebuffer.id());
   glViewport(0, 0, targets.width, targets.height);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   const GLuint program = program_.id();
   glUseProgram(program);
-  glProgramUniform1i(program, glGetUniformLocation(program, "uLightCount"),
-                     static_cast<GLint>(lights.size()));
+  glProgramUniform1i(program, glGetUniformLocation(program, "uLightCount"), inputs.lightCount);
+  glProgramUniform1i(program, glGetUniformLocation(program, "uFrameWidth"), targets.width);
+  setShadowRayUniforms(program, inputs.shadows);
   glProgramUniform3fv(program, glGetUniformLocation(program, "uCameraPosition"), 1,
                       glm::value_ptr(camera.position));
-  glProgramUniform1f(program, glGetUniformLocation(program, "uAmbient"), ambient);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lightBuffer_.id());
+  glProgramUniform1f(program, glGetUniformLocation(program, "uAmbient"), inputs.ambient);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_LIGHTS, inputs.lights);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_RAY_VISIBILITY, inputs.visibility);
   bindGBuffer(targets.gbuffer);
   glBindVertexArray(emptyVertexArray_.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -66,6 +66,7 @@ void LghFrameLighting::uploadVpls(const LghSettings& settings, const CachedScene
 void LghFrameLighting::run(const LghSettings& settings, const CachedScene& cached,
                            const CameraMatrices& camera, FrameTargets& frame, gl::GpuTimer& timer,
                            FrameReport& report, LghFrameProbe* probe) {
+  sampled_ = false;
   report.decide("vpls", std::to_string(settings.vplCount));
   report.decide("interleave", std::string(enumName(settings.interleave)));
   if (settings.vplCount <= 0) {
@@ -85,6 +86,7 @@ void LghFrameLighting::run(const LghSettings& settings, const CachedScene& cache
   targets_.resize(frame.width, frame.height, params.interleave, params.samples);
   const LightingPath path = choosePath(settings.path, params, camera, frame, report);
   light(path, params, camera, frame, timer);
+  sampled_ = true;
   report.decide("lgh_lighting", std::string(enumName(path)));
   report.decide("lgh_shadow_samples", std::to_string(params.samples));
   if (path == LightingPath::Raster && params.locked) {
@@ -98,6 +100,11 @@ void LghFrameLighting::run(const LghSettings& settings, const CachedScene& cache
     readProbe(settings, camera, frame, timer, *probe);
     if (probe->bruteForce) report.decide("reference", "brute-force");
   }
+}
+
+LghFrameLighting::ShadowSamples LghFrameLighting::shadowSamples() const {
+  if (!sampled_) return {};
+  return {targets_.shadowSamples.id(), targets_.samples};
 }
 
 LightingPath LghFrameLighting::choosePath(LightingPath requested, const LghLightingParams& params,

@@ -18,9 +18,9 @@
 
 #include <glm/glm.hpp>
 
+#include "frame_report.hpp"
 #include "gl/gpu_timer.hpp"
 #include "lightgrid/lgh_builder.hpp"
-#include "frame_report.hpp"
 #include "passes/lgh_bruteforce_pass.hpp"
 #include "passes/lgh_compute_lighting_pass.hpp"
 #include "passes/lgh_interleave_pass.hpp"
@@ -58,6 +58,14 @@ class LghFrameLighting {
            FrameTargets& frame, gl::GpuTimer& timer, FrameReport& report,
            LghFrameProbe* probe = nullptr);
 
+  // The k shadow samples per pixel that the last run picked (vec4(position, weight) at
+  // [pixel * k + s], GL row order), for the shadow rays; {0, 0} when it lit nothing.
+  struct ShadowSamples {
+    GLuint buffer = 0;
+    int count = 0;
+  };
+  ShadowSamples shadowSamples() const;
+
   // Total intensity of the VPLs of a scene: vplIntensity x R^2 with R half the scene's bounding
   // diagonal, so that the indirect light's brightness does not depend on the scene's units.
   static float vplTotalIntensity(const Scene& scene, float vplIntensity);
@@ -92,6 +100,7 @@ class LghFrameLighting {
   LghInterleavePass interleave_;
   LghBruteForcePass bruteForce_;
   std::optional<LightingPath> measuredPath_;
+  bool sampled_ = false;  // the last run picked shadow samples
 };
 
 }  // namespace lgh

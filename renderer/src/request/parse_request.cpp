@@ -137,6 +137,8 @@ LightDesc readLight(const json& object) {
   read(object, "inner_cone_angle", light.innerConeAngle);
   read(object, "outer_cone_angle", light.outerConeAngle);
   read(object, "spot_exponent", light.spotExponent);
+  read(object, "radius", light.radius);
+  read(object, "angular_radius", light.angularRadius);
   return light;
 }
 
@@ -190,6 +192,10 @@ LghSettings readLgh(const json& object) {
 RenderSettings readSettings(const json& object) {
   RenderSettings settings;
   read(object, "ambient", settings.ambient);
+  readEnum(object, "shadows", settings.shadows.mode);
+  readEnum(object, "shadow_path", settings.shadows.tracing);
+  read(object, "shadow_light_samples", settings.shadows.lightSamples);
+  read(object, "shadow_filter_iterations", settings.shadows.filterIterations);
   if (const auto lgh = object.find("lgh"); lgh != object.end()) settings.lgh = readLgh(*lgh);
   return settings;
 }

@@ -86,6 +86,7 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source) {
     ++hits_;
     lookup.entry = slots_.front().entry;
     lookup.hit = true;
+    evictOverBudget();  // acceleration structures built since may have grown the entries
     return lookup;
   }
   ++misses_;
@@ -97,17 +98,18 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source) {
   entry->gpu = std::make_unique<GpuScene>(entry->scene, maxAnisotropy_);
   lookup.uploadMs = uploadTimer.elapsedMs();
   lookup.entry = entry;
-  slots_.push_front({key, entry, entry->gpu->gpuBytes()});
+  slots_.push_front({key, entry});
   evictOverBudget();
   return lookup;
 }
 
 void SceneCache::evictOverBudget() {
   std::size_t total = 0;
-  for (const Slot& slot : slots_) total += slot.bytes;
+  for (const Slot& slot : slots_) total += slot.entry->gpuBytes();
   while (slots_.size() > 1 && total > options_.sceneCacheBytes) {
-    spdlog::info("scene cache: evicting {} ({} bytes)", slots_.back().key, slots_.back().bytes);
-    total -= slots_.back().bytes;
+    const std::size_t bytes = slots_.back().entry->gpuBytes();
+    spdlog::info("scene cache: evicting {} ({} bytes)", slots_.back().key, bytes);
+    total -= bytes;
     slots_.pop_back();
   }
 }
@@ -117,7 +119,7 @@ SceneCacheStats SceneCache::stats() const {
   stats.hits = hits_;
   stats.misses = misses_;
   stats.entries = slots_.size();
-  for (const Slot& slot : slots_) stats.bytes += slot.bytes;
+  for (const Slot& slot : slots_) stats.bytes += slot.entry->gpuBytes();
   return stats;
 }
 

@@ -1,6 +1,7 @@
-// LRU cache of loaded scenes (CPU data + GPU upload) keyed by content: "demo", an asset's resolved
-// path + size + mtime, or a hash of inline GLB bytes. Bounded by a GPU memory budget; the most
-// recently used scene is always kept, even when it alone exceeds the budget.
+// LRU cache of loaded scenes (CPU data + GPU upload + acceleration structures) keyed by content:
+// "demo", an asset's resolved path + size + mtime, or a hash of inline GLB bytes. Bounded by a GPU
+// memory budget, checked on every lookup; the most recently used scene is always kept, even when
+// it alone exceeds the budget.
 #pragma once
 
 #include <cstdint>
@@ -12,12 +13,27 @@
 #include "lgh/scene_cache_stats.hpp"
 #include "scene/gpu_scene.hpp"
 #include "scene/scene.hpp"
+#include "vk/shadow_tracer.hpp"
 
 namespace lgh {
+
+// The acceleration structures of a cached scene, built by the first shadowed frame that draws it
+// and kept while the tracer that built them lives (`epoch`: ShadowDevice::epoch()).
+struct TraceSceneSlot {
+  std::unique_ptr<vk::TraceScene> scene;
+  std::uint64_t epoch = 0;
+};
 
 struct CachedScene {
   Scene scene;
   std::unique_ptr<GpuScene> gpu;
+  // Built lazily, by frames that hold the entry as const: part of the cache, not of the scene.
+  mutable TraceSceneSlot trace;
+
+  // GPU memory held: the GL upload and the acceleration structures.
+  std::size_t gpuBytes() const {
+    return gpu->gpuBytes() + (trace.scene ? trace.scene->gpuBytes() : 0);
+  }
 };
 
 class SceneCache {
@@ -46,7 +62,6 @@ class SceneCache {
   struct Slot {
     std::string key;
     std::shared_ptr<CachedScene> entry;
-    std::size_t bytes = 0;
   };
   std::list<Slot> slots_;  // front: most recently used
   std::uint64_t hits_ = 0;

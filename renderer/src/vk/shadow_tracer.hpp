@@ -30,14 +30,14 @@ using DeviceUuid = std::array<std::uint8_t, 16>;
 
 // What the tracer runs on and can do; reported in /v1/info and the logs.
 struct TracerInfo {
-  std::string deviceName;  // VkPhysicalDeviceProperties::deviceName
-  std::string driverName;  // VkPhysicalDeviceDriverProperties: driverName, driverInfo
-  std::string apiVersion;  // "1.3.289"
-  bool rayQuery = false;            // VK_KHR_ray_query enabled
-  bool rayTracingPipeline = false;  // VK_KHR_ray_tracing_pipeline enabled
-  bool externalMemoryFd = false;    // buffers exportable as opaque fds
-  bool externalSemaphoreFd = false; // semaphores exportable as opaque fds
-  double createMs = 0.0;            // loader + instance + device + pipelines, wall clock
+  std::string deviceName;            // VkPhysicalDeviceProperties::deviceName
+  std::string driverName;            // VkPhysicalDeviceDriverProperties: driverName, driverInfo
+  std::string apiVersion;            // "1.3.289"
+  bool rayQuery = false;             // VK_KHR_ray_query enabled
+  bool rayTracingPipeline = false;   // VK_KHR_ray_tracing_pipeline enabled
+  bool externalMemoryFd = false;     // buffers exportable as opaque fds
+  bool externalSemaphoreFd = false;  // semaphores exportable as opaque fds
+  double createMs = 0.0;             // loader + instance + device + pipelines, wall clock
 };
 
 // The acceleration structures of one Scene: a compacted BLAS per mesh (all its primitives,

@@ -1,0 +1,99 @@
+#version 450 core
+// Shadow ray setup: one invocation per pixel writes the pixel's ray origin (its G-buffer position
+// moved off the surface along the normal) and its targets: uLightSamples points (or directions)
+// on each shadowed direct light, jittered over the light's radius for soft shadows, then the
+// LGH's k shadow samples (already jittered by the grid light's variance, Sec. 3.3).
+// Inputs: G-buffer position and normal, lights SSBO, LGH samples. Outputs: origins, targets.
+
+#include "include/gbuffer.glsl"
+#include "include/lights.glsl"
+#include "include/reservoir.glsl"
+#include "include/shadow_rays.glsl"
+
+layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
+
+layout(std430, binding = LGH_SLOT_LIGHTS) readonly buffer Lights { Light lights[]; };
+layout(std430, binding = LGH_SLOT_SHADOW_SAMPLES) readonly buffer LghSamples {
+  vec4 lghSamples[];  // vec4(position, weight); weight 0: no light
+};
+layout(std430, binding = LGH_SLOT_RAY_ORIGINS) writeonly buffer RayOrigins { vec4 origins[]; };
+layout(std430, binding = LGH_SLOT_RAY_TARGETS) writeonly buffer RayTargets { vec4 targets[]; };
+
+uniform ivec2 uFrameSize;
+uniform int uLghSampleCount;  // k; 0 when the frame has no LGH samples
+uniform float uSurfaceOffset;  // world units the origin moves along the normal
+uniform uint uSeed;
+
+const vec4 NO_RAY = vec4(0.0, 0.0, 0.0, -1.0);
+
+// Two uniform numbers in [0, 1) for (pixel, light, sample).
+vec2 jitter(uint pixelSeed, int light, int sampleIndex) {
+  uint seed = reservoirLightSeed(pixelSeed, uint(light));
+  return vec2(reservoirRandom(seed, uint(sampleIndex), 1u),
+              reservoirRandom(seed, uint(sampleIndex), 2u));
+}
+
+// An orthonormal basis around unit n (Duff et al. 2017).
+void basis(vec3 n, out vec3 t, out vec3 b) {
+  float s = n.z >= 0.0 ? 1.0 : -1.0;
+  float a = -1.0 / (s + n.z);
+  float c = n.x * n.y * a;
+  t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
+  b = vec3(c, s + n.y * n.y * a, -n.y);
+}
+
+// A point on the disk of radius r facing `origin`, centred on `center` (uniform by area).
+vec3 diskPoint(vec3 center, float r, vec3 origin, vec2 u) {
+  if (r <= 0.0) return center;
+  vec3 t, b;
+  basis(normalize(center - origin), t, b);
+  float rho = r * sqrt(u.x);
+  float phi = 2.0 * PI * u.y;
+  return center + rho * (cos(phi) * t + sin(phi) * b);
+}
+
+// A direction in the cone of half-angle `angle` around unit `axis` (uniform by solid angle).
+vec3 coneDirection(vec3 axis, float angle, vec2 u) {
+  if (angle <= 0.0) return axis;
+  vec3 t, b;
+  basis(axis, t, b);
+  float cosTheta = 1.0 - u.x * (1.0 - cos(angle));
+  float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
+  float phi = 2.0 * PI * u.y;
+  return cosTheta * axis + sinTheta * (cos(phi) * t + sin(phi) * b);
+}
+
+vec4 directTarget(int light, int sampleIndex, vec3 origin, uint pixelSeed) {
+  Light l = lights[light];
+  int type = int(l.positionType.w + 0.5);
+  vec2 u = jitter(pixelSeed, light, sampleIndex);
+  float size = l.cone.z;  // radius (point, spot) or angular radius (directional)
+  if (type == LIGHT_DIRECTIONAL) return vec4(coneDirection(-l.directionRange.xyz, size, u), 0.0);
+  return vec4(diskPoint(l.positionType.xyz, size, origin, u), 1.0);
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(pixel, uFrameSize))) return;
+  uint pixelIndex = uint(pixel.y) * uint(uFrameSize.x) + uint(pixel.x);
+  uint firstTarget = pixelIndex * uint(uRaysPerPixel);
+  SurfacePoint s;
+  if (!readSurface(pixel, s)) {
+    origins[pixelIndex] = vec4(0.0);
+    for (int ray = 0; ray < uRaysPerPixel; ++ray) targets[firstTarget + uint(ray)] = NO_RAY;
+    return;
+  }
+  vec3 origin = s.position + s.normal * uSurfaceOffset;
+  origins[pixelIndex] = vec4(origin, 1.0);
+  uint pixelSeed = reservoirPixelSeed(uSeed, pixelIndex);
+  int ray = 0;
+  for (int light = 0; light < uShadowedLights; ++light) {
+    for (int sampleIndex = 0; sampleIndex < uLightSamples; ++sampleIndex) {
+      targets[firstTarget + uint(ray++)] = directTarget(light, sampleIndex, origin, pixelSeed);
+    }
+  }
+  for (int k = 0; k < uLghSampleCount; ++k) {
+    vec4 lghSample = lghSamples[pixelIndex * uint(uLghSampleCount) + uint(k)];
+    targets[firstTarget + uint(ray++)] = lghSample.w > 0.0 ? vec4(lghSample.xyz, 1.0) : NO_RAY;
+  }
+}

@@ -1,0 +1,42 @@
+#include "passes/shadow_ray_setup_pass.hpp"
+
+#include "gl/shader_library.hpp"
+#include "gl/slots.hpp"
+#include "passes/direct_lighting_pass.hpp"
+
+namespace lgh {
+namespace {
+
+GLint location(GLuint program, const char* name) { return glGetUniformLocation(program, name); }
+
+}  // namespace
+
+void setShadowRayUniforms(GLuint program, const ShadowRayLayout& layout) {
+  glProgramUniform1i(program, location(program, "uShadowedLights"), layout.shadowedLights);
+  glProgramUniform1i(program, location(program, "uLightSamples"), layout.lightSamples);
+  glProgramUniform1i(program, location(program, "uRaysPerPixel"), layout.raysPerPixel());
+  glProgramUniform1i(program, location(program, "uVisibilityWords"), layout.words());
+}
+
+ShadowRaySetupPass::ShadowRaySetupPass()
+    : program_(gl::buildComputeProgram("shadow_ray_setup.comp")) {}
+
+void ShadowRaySetupPass::run(const ShadowRaySetupInputs& inputs, const FrameTargets& frame,
+                             GLuint origins, GLuint targets) {
+  const GLuint program = program_.id();
+  glUseProgram(program);
+  setShadowRayUniforms(program, inputs.layout);
+  glProgramUniform2i(program, location(program, "uFrameSize"), frame.width, frame.height);
+  glProgramUniform1i(program, location(program, "uLghSampleCount"), inputs.layout.lghSamples);
+  glProgramUniform1f(program, location(program, "uSurfaceOffset"), inputs.surfaceOffset);
+  glProgramUniform1ui(program, location(program, "uSeed"), inputs.seed);
+  bindGBuffer(frame.gbuffer);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_LIGHTS, inputs.lights);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_SHADOW_SAMPLES, inputs.lghSamples);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_RAY_ORIGINS, origins);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_RAY_TARGETS, targets);
+  glDispatchCompute(gl::groups2D(frame.width), gl::groups2D(frame.height), 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+}  // namespace lgh

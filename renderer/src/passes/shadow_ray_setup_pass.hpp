@@ -1,0 +1,44 @@
+// Shadow ray setup pass (GL compute), the first step of a shadowed frame:
+//   inputs:  G-buffer position and normal, the frame's lights buffer (the first `shadowedLights`
+//            get `lightSamples` rays each), the LGH's k shadow samples per pixel (when it ran)
+//   outputs: the ray batch's origins and targets (layout: vk/shadow_tracer.hpp)
+//   shaders: glsl/shadow_ray_setup.comp (include/shadow_rays.glsl)
+#pragma once
+
+#include <cstdint>
+
+#include "gl/gl_objects.hpp"
+#include "passes/frame_targets.hpp"
+
+namespace lgh {
+
+struct ShadowRayLayout {
+  int shadowedLights = 0;  // the first lights of the lights buffer that get rays
+  int lightSamples = 1;    // rays per shadowed light
+  int lghSamples = 0;      // k, the LGH's samples per pixel (0: none this frame)
+  int raysPerPixel() const { return shadowedLights * lightSamples + lghSamples; }
+  int words() const { return (raysPerPixel() + 31) / 32; }
+};
+
+struct ShadowRaySetupInputs {
+  ShadowRayLayout layout;
+  GLuint lights = 0;      // SSBO of GpuLight
+  GLuint lghSamples = 0;  // SSBO of vec4 per pixel and sample (layout.lghSamples > 0)
+  float surfaceOffset = 0.0F;
+  std::uint32_t seed = 1;
+};
+
+class ShadowRaySetupPass {
+ public:
+  ShadowRaySetupPass();
+  void run(const ShadowRaySetupInputs& inputs, const FrameTargets& frame, GLuint origins,
+           GLuint targets);
+
+ private:
+  gl::Program program_;
+};
+
+// Sets the uniforms of glsl/include/shadow_rays.glsl on `program`.
+void setShadowRayUniforms(GLuint program, const ShadowRayLayout& layout);
+
+}  // namespace lgh

@@ -1,0 +1,64 @@
+#include "shadows/shadow_device.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "gl/gl_api.hpp"
+#include "lgh/error.hpp"
+
+namespace lgh {
+
+ShadowDevice::ShadowDevice() = default;
+ShadowDevice::~ShadowDevice() = default;
+
+bool glDeviceUuid(vk::DeviceUuid& uuid, std::string& whyNot) {
+  const gl::Api& api = gl::api("glGetUnsignedBytei_vEXT");
+  if ((api.EXT_memory_object == 0 && api.EXT_semaphore == 0) ||
+      api.GetUnsignedBytei_vEXT == nullptr) {
+    whyNot =
+        "the GL context has neither GL_EXT_memory_object nor GL_EXT_semaphore, so its "
+        "device cannot be matched with a Vulkan device";
+    return false;
+  }
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, uuid.data());
+  if (glGetError() != GL_NO_ERROR) {
+    whyNot = "the GL context reports no device UUID (glGetUnsignedBytei_vEXT failed)";
+    return false;
+  }
+  return true;
+}
+
+vk::ShadowTracer* ShadowDevice::tracer() {
+  if (tracer_ || tried_) return tracer_.get();
+  tried_ = true;
+  vk::DeviceUuid uuid{};
+  if (!glDeviceUuid(uuid, reason_)) {
+    spdlog::warn("shadows: unavailable: {}", reason_);
+    return nullptr;
+  }
+  try {
+    tracer_ = vk::ShadowTracer::create(uuid);
+    ++epoch_;
+    reason_.clear();
+    const vk::TracerInfo& info = tracer_->info();
+    spdlog::info(
+        "shadows: Vulkan device {} ({}), ray query {}, ray-tracing pipeline {}, "
+        "external memory {}, external semaphores {}, ready in {:.0f} ms",
+        info.deviceName, info.driverName, info.rayQuery, info.rayTracingPipeline,
+        info.externalMemoryFd, info.externalSemaphoreFd, info.createMs);
+  } catch (const Error& error) {
+    reason_ = error.message();
+    spdlog::warn("shadows: unavailable: {}", reason_);
+  }
+  return tracer_.get();
+}
+
+void ShadowDevice::reset(const std::string& why) {
+  spdlog::error("shadows: the Vulkan tracer is reset after a failure: {}", why);
+  tracer_.reset();
+  tried_ = false;
+  reason_ = why;
+}
+
+}  // namespace lgh

@@ -1,0 +1,42 @@
+// The Vulkan shadow tracer of the GL context's own GPU, created when a frame first needs it (the
+// Vulkan instance and device cost 0.1-0.6 s), or the reason this machine has none. One per
+// Renderer; the scene cache's acceleration structures belong to it (TraceSceneSlot::epoch), so
+// the Renderer destroys the cache before it.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "vk/shadow_tracer.hpp"
+
+namespace lgh {
+
+class ShadowDevice {
+ public:
+  ShadowDevice();
+  ~ShadowDevice();
+  ShadowDevice(const ShadowDevice&) = delete;
+  ShadowDevice& operator=(const ShadowDevice&) = delete;
+
+  // The tracer, created on the first call; nullptr when there is none (unavailableReason()).
+  // Needs the GL context current on the calling thread (it reads the GL device UUID).
+  vk::ShadowTracer* tracer();
+  const std::string& unavailableReason() const { return reason_; }
+  // Changes whenever a new tracer is created: acceleration structures of an older epoch belong
+  // to a device that is gone and must be built again.
+  std::uint64_t epoch() const { return epoch_; }
+  // Drops the tracer after a failure (a lost device, say); the next tracer() makes a new one.
+  void reset(const std::string& why);
+
+ private:
+  std::unique_ptr<vk::ShadowTracer> tracer_;
+  std::string reason_;
+  bool tried_ = false;
+  std::uint64_t epoch_ = 0;
+};
+
+// The GL context's device UUID (GL_EXT_memory_object or GL_EXT_semaphore), or why there is none.
+bool glDeviceUuid(vk::DeviceUuid& uuid, std::string& whyNot);
+
+}  // namespace lgh

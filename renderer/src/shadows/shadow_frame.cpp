@@ -1,0 +1,160 @@
+#include "shadows/shadow_frame.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+#include <glm/glm.hpp>
+
+#include "lgh/error.hpp"
+
+namespace lgh {
+namespace {
+
+// Rays start this far (relative to the scene's size) off their surface along its normal, and
+// rays to a point end this fraction short of it (a VPL lies on a surface).
+constexpr float kSurfaceOffset = 1e-4F;
+constexpr float kEndEpsilon = 1e-3F;
+// Direct-light jitter and the LGH's samples draw from different random streams.
+constexpr std::uint32_t kDirectSeedSalt = 0x9e3779b9U;
+
+float surfaceOffset(const Scene& scene) {
+  const float size = scene.bounds.empty() ? 1.0F : glm::length(scene.bounds.size());
+  return std::max(kSurfaceOffset * size, 1e-6F);
+}
+
+}  // namespace
+
+ShadowFrame::ShadowFrame(ShadowDevice* device) : device_(device) {}
+ShadowFrame::~ShadowFrame() = default;
+
+vk::ShadowTracer* ShadowFrame::tracerFor(const ShadowSettings& settings, FrameReport& report) {
+  vk::ShadowTracer* tracer = device_ != nullptr ? device_->tracer() : nullptr;
+  if (tracer != nullptr) return tracer;
+  const std::string reason =
+      device_ != nullptr ? device_->unavailableReason() : "this renderer traces no rays";
+  if (settings.mode == ShadowMode::On) {
+    throw Error(ErrorCode::Unavailable,
+                "shadows were asked for, but this machine cannot trace them: " + reason,
+                "/settings/shadows");
+  }
+  report.decide("shadows", "none");
+  report.warn("rendered without shadows: " + reason);
+  return nullptr;
+}
+
+vk::TracePath ShadowFrame::choosePath(vk::ShadowTracer& tracer, ShadowTracing requested) const {
+  const bool rayQuery = tracer.supports(vk::TracePath::RayQuery);
+  if (requested == ShadowTracing::Auto) {
+    return rayQuery ? vk::TracePath::RayQuery : vk::TracePath::Pipeline;
+  }
+  const vk::TracePath path =
+      requested == ShadowTracing::RayQuery ? vk::TracePath::RayQuery : vk::TracePath::Pipeline;
+  if (!tracer.supports(path)) {
+    throw Error(ErrorCode::Invalid,
+                fmt::format("the Vulkan device '{}' has no {} ({}); ask for \"auto\"",
+                            tracer.info().deviceName, enumName(path),
+                            path == vk::TracePath::RayQuery ? "VK_KHR_ray_query"
+                                                            : "VK_KHR_ray_tracing_pipeline"),
+                "/settings/shadow_path");
+  }
+  return path;
+}
+
+ShadowRayLayout ShadowFrame::budget(const ShadowFrameInputs& inputs, FrameReport& report) const {
+  ShadowRayLayout layout;
+  layout.lightSamples = std::max(inputs.settings.lightSamples, 1);
+  layout.lghSamples = inputs.lghSamples != 0 ? inputs.lghSampleCount : 0;
+  const int capacity =
+      (static_cast<int>(vk::kMaxRaysPerPixel) - layout.lghSamples) / layout.lightSamples;
+  layout.shadowedLights = std::clamp(inputs.lightCount, 0, std::max(capacity, 0));
+  if (layout.shadowedLights < inputs.lightCount) {
+    report.warn(
+        fmt::format("{} of {} lights cast no shadows: a pixel traces at most {} shadow "
+                    "rays ({} per light, {} for the LGH's samples)",
+                    inputs.lightCount - layout.shadowedLights, inputs.lightCount,
+                    vk::kMaxRaysPerPixel, layout.lightSamples, layout.lghSamples));
+  }
+  return layout;
+}
+
+const vk::TraceScene& ShadowFrame::traceScene(vk::ShadowTracer& tracer, const CachedScene& scene) {
+  TraceSceneSlot& slot = scene.trace;
+  if (!slot.scene || slot.epoch != device_->epoch()) {
+    slot.scene.reset();
+    slot.scene = tracer.buildScene(scene.scene);
+    slot.epoch = device_->epoch();
+    buildMs_ = slot.scene->buildGpuMs();
+  }
+  return *slot.scene;
+}
+
+void ShadowFrame::trace(const ShadowFrameInputs& inputs, const CachedScene& scene,
+                        const FrameTargets& frame, gl::GpuTimer& timer, FrameReport& report) {
+  traced_ = false;
+  buildMs_ = -1.0;
+  transferMs_ = 0.0;
+  layout_ = {};
+  lghSamples_ = inputs.lghSamples;
+  if (inputs.settings.mode == ShadowMode::Off) {
+    report.decide("shadows", "off");
+    return;
+  }
+  vk::ShadowTracer* tracer = tracerFor(inputs.settings, report);
+  if (tracer == nullptr) return;
+  const vk::TracePath path = choosePath(*tracer, inputs.settings.tracing);
+  report.decide("shadows", std::string(enumName(path)));
+  layout_ = budget(inputs, report);
+  report.decide("shadow_rays", std::to_string(layout_.raysPerPixel()));
+  if (layout_.raysPerPixel() == 0) return;
+  try {
+    traceRays(inputs, *tracer, path, scene, frame, timer, report);
+  } catch (const Error& error) {
+    transport_.reset();
+    if (device_ != nullptr) device_->reset(error.message());
+    throw;
+  }
+}
+
+void ShadowFrame::traceRays(const ShadowFrameInputs& inputs, vk::ShadowTracer& tracer,
+                            vk::TracePath path, const CachedScene& scene, const FrameTargets& frame,
+                            gl::GpuTimer& timer, FrameReport& report) {
+  const vk::TraceScene& accel = traceScene(tracer, scene);
+  if (!transport_ || transportEpoch_ != device_->epoch()) {
+    transport_ = std::make_unique<RayBatchTransport>(tracer);
+    transportEpoch_ = device_->epoch();
+  }
+  const vk::RayBatchShape shape{static_cast<std::uint32_t>(frame.width),
+                                static_cast<std::uint32_t>(frame.height),
+                                static_cast<std::uint32_t>(layout_.raysPerPixel())};
+  buffers_ = transport_->prepare(shape);
+  const float offset = surfaceOffset(scene.scene);
+  {
+    gl::ScopedGpuPass pass(timer, "shadow ray setup");
+    setup_.run({layout_, inputs.lights, inputs.lghSamples, offset, inputs.seed ^ kDirectSeedSalt},
+               frame, buffers_.origins, buffers_.targets);
+  }
+  vk::TraceParams params;
+  params.tMin = offset;
+  params.endEpsilon = kEndEpsilon;
+  transferMs_ = transport_->trace(accel, path, shape, params);
+  traced_ = true;
+  report.decide("shadow_transport", transport_->name());
+}
+
+GLuint ShadowFrame::filterLgh(int iterations, const CameraMatrices& camera,
+                              const FrameTargets& frame, gl::GpuTimer& timer) {
+  if (!traced_ || layout_.lghSamples == 0) return 0;
+  if (!filter_) filter_.emplace();
+  gl::ScopedGpuPass pass(timer, "shadow filter");
+  return filter_->run({layout_, buffers_.visibility, lghSamples_, iterations}, camera, frame);
+}
+
+void ShadowFrame::collectTimings(FrameReport& report) {
+  if (buildMs_ >= 0.0) report.timings.add("shadow as build", TimingRow::Clock::Gpu, buildMs_);
+  if (!traced_ || device_ == nullptr || device_->tracer() == nullptr) return;
+  report.timings.add("shadow rays", TimingRow::Clock::Gpu,
+                     device_->tracer()->collectTimings().traceGpuMs);
+  report.timings.add("shadow transfer", TimingRow::Clock::Cpu, transferMs_);
+}
+
+}  // namespace lgh
