@@ -11,7 +11,7 @@
 
 #include "lgh/error.hpp"
 #include "scene/asset_path.hpp"
-#include "scene/gltf_loader.hpp"
+#include "scene/gltf/gltf_loader.hpp"
 #include "test_support.hpp"
 
 namespace {

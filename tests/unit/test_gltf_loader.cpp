@@ -16,7 +16,7 @@
 
 #include "lgh/error.hpp"
 #include "lgh/image.hpp"
-#include "scene/gltf_loader.hpp"
+#include "scene/gltf/gltf_loader.hpp"
 #include "test_support.hpp"
 
 namespace {

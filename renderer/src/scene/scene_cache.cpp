@@ -9,7 +9,7 @@
 #include "gl/gl_api.hpp"
 #include "scene/asset_path.hpp"
 #include "scene/demo_scene.hpp"
-#include "scene/gltf_loader.hpp"
+#include "scene/gltf/gltf_loader.hpp"
 
 namespace lgh {
 namespace {

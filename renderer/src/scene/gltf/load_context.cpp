@@ -1,0 +1,20 @@
+#include "scene/gltf/load_context.hpp"
+
+#include <fmt/format.h>
+
+namespace lgh::gltf {
+
+void invalid(const LoadContext& ctx, const std::string& message) {
+  throw Error(ErrorCode::Invalid, message, ctx.displayName);
+}
+
+void tooLarge(const LoadContext& ctx, const std::string& message) {
+  throw Error(ErrorCode::TooLarge, message, ctx.displayName);
+}
+
+std::string label(const char* kind, int index, const std::string& name) {
+  return name.empty() ? fmt::format("{} {}", kind, index)
+                      : fmt::format("{} {} ('{}')", kind, index, name);
+}
+
+}  // namespace lgh::gltf

@@ -1,0 +1,280 @@
+#include "scene/gltf/primitive_converter.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "scene/tangents.hpp"
+
+namespace lgh::gltf {
+
+bool isFinite(const glm::vec4& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
+}
+
+namespace {
+
+// Triangle lists from glTF's modes; winding as the spec's formulas.
+std::vector<std::uint32_t> toTriangleList(std::vector<std::uint32_t> indices, int mode) {
+  if (mode == TINYGLTF_MODE_TRIANGLES) return indices;
+  std::vector<std::uint32_t> list;
+  if (indices.size() < 3) return list;
+  list.reserve((indices.size() - 2) * 3);
+  for (std::size_t i = 0; i + 2 < indices.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      const std::size_t odd = i % 2;
+      list.insert(list.end(), {indices[i], indices[i + 1 + odd], indices[i + 2 - odd]});
+    } else {  // TRIANGLE_FAN
+      list.insert(list.end(), {indices[i + 1], indices[i + 2], indices[0]});
+    }
+  }
+  return list;
+}
+
+std::size_t triangleCountFor(std::size_t indexCount, int mode) {
+  if (mode == TINYGLTF_MODE_TRIANGLES) return indexCount / 3;
+  return indexCount >= 3 ? indexCount - 2 : 0;
+}
+
+const char* modeName(int mode) {
+  switch (mode) {
+    case TINYGLTF_MODE_POINTS:
+      return "POINTS";
+    case TINYGLTF_MODE_LINE:
+      return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP:
+      return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP:
+      return "LINE_STRIP";
+    default:
+      return "an unknown mode";
+  }
+}
+
+bool isTriangleMode(int mode) {
+  return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
+         mode == TINYGLTF_MODE_TRIANGLE_FAN;
+}
+
+template <typename Vec>
+Vec sanitized(Vec value, float replacement, std::size_t& replaced) {
+  for (int c = 0; c < Vec::length(); ++c) {
+    if (!std::isfinite(value[c])) {
+      value[c] = replacement;
+      ++replaced;
+    }
+  }
+  return value;
+}
+
+glm::vec4 readColor(const std::vector<float>& colors, std::size_t i, int components,
+                    std::size_t& replaced) {
+  const std::size_t base = i * static_cast<std::size_t>(components);
+  glm::vec4 color(colors[base], colors[base + 1], colors[base + 2], 1.0F);
+  if (components == 4) color.w = colors[base + 3];
+  return sanitized(color, 1.0F, replaced);
+}
+
+// Normalises the asset's tangents in place; false when any is unusable (then all are rebuilt).
+bool normalizeGivenTangents(Primitive& primitive) {
+  for (Vertex& vertex : primitive.vertices) {
+    const glm::vec3 t(vertex.tangent);
+    if (!isFinite(vertex.tangent) || !isUsableDirection(t)) return false;
+    if (std::abs(std::abs(vertex.tangent.w) - 1.0F) > 0.01F) return false;
+    vertex.tangent = glm::vec4(glm::normalize(t), vertex.tangent.w < 0.0F ? -1.0F : 1.0F);
+  }
+  return true;
+}
+
+}  // namespace
+
+PrimitiveConverter::PrimitiveConverter(const tinygltf::Model& model, LoadContext& ctx,
+                                       const AccessorReader& reader)
+    : model_(model), ctx_(ctx), reader_(reader) {}
+
+std::optional<Primitive> PrimitiveConverter::convert(int meshIndex, int primitiveIndex,
+                                                     std::size_t trianglesSoFar) const {
+  const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(meshIndex)];
+  const tinygltf::Primitive& source = mesh.primitives[static_cast<std::size_t>(primitiveIndex)];
+  const std::string owner =
+      fmt::format("{} primitive {}", label("mesh", meshIndex, mesh.name), primitiveIndex);
+  if (!isTriangleMode(source.mode)) {
+    ctx_.warnings.push_back(fmt::format("{}: mode {} ({}) is not rendered; skipped", owner,
+                                        source.mode, modeName(source.mode)));
+    return std::nullopt;
+  }
+  if (!source.targets.empty()) {
+    ctx_.warnOnce("morph targets are not supported; the base meshes are rendered");
+  }
+  Primitive primitive;
+  primitive.material = checkedMaterial(source.material, owner);
+  readPositions(source, owner, primitive);
+  readIndices(source, owner, trianglesSoFar, primitive);
+  if (primitive.indices.empty()) return std::nullopt;
+  readAttributes(source, owner, primitive);
+  return primitive;
+}
+
+int PrimitiveConverter::checkedMaterial(int material, const std::string& owner) const {
+  if (material >= 0 && static_cast<std::size_t>(material) >= model_.materials.size()) {
+    invalid(ctx_, fmt::format("{}: material {} does not exist", owner, material));
+  }
+  return material;
+}
+
+int PrimitiveConverter::attributeAccessor(const tinygltf::Primitive& source,
+                                          const char* name) const {
+  const auto it = source.attributes.find(name);
+  return it == source.attributes.end() ? -1 : it->second;
+}
+
+std::vector<float> PrimitiveConverter::readAttribute(const tinygltf::Primitive& source,
+                                                     const char* name, Semantic semantic,
+                                                     const std::string& owner,
+                                                     std::size_t vertexCount,
+                                                     int* components) const {
+  const int accessor = attributeAccessor(source, name);
+  if (accessor < 0) return {};
+  const std::string what = fmt::format("{} attribute {}", owner, name);
+  std::vector<float> values = reader_.readFloats(accessor, semantic, what, components);
+  if (values.size() != vertexCount * static_cast<std::size_t>(*components)) {
+    invalid(ctx_, fmt::format("{}: accessor {} has {} elements but POSITION has {}", what, accessor,
+                              values.size() / static_cast<std::size_t>(*components), vertexCount));
+  }
+  return values;
+}
+
+void PrimitiveConverter::readPositions(const tinygltf::Primitive& source, const std::string& owner,
+                                       Primitive& primitive) const {
+  const int accessor = attributeAccessor(source, "POSITION");
+  if (accessor < 0) invalid(ctx_, fmt::format("{} has no POSITION attribute", owner));
+  int components = 0;
+  const std::string what = fmt::format("{} attribute POSITION", owner);
+  const std::vector<float> values =
+      reader_.readFloats(accessor, Semantic::Position, what, &components);
+  primitive.vertices.resize(values.size() / 3);
+  for (std::size_t i = 0; i < primitive.vertices.size(); ++i) {
+    const glm::vec3 position(values[i * 3], values[i * 3 + 1], values[i * 3 + 2]);
+    if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z)) {
+      invalid(ctx_, fmt::format("{}: accessor {} holds a non-finite position (NaN or Inf) at "
+                                "vertex {}",
+                                what, accessor, i));
+    }
+    primitive.vertices[i].position = position;
+  }
+}
+
+void PrimitiveConverter::readIndices(const tinygltf::Primitive& source, const std::string& owner,
+                                     std::size_t trianglesSoFar, Primitive& primitive) const {
+  const std::size_t vertexCount = primitive.vertices.size();
+  const std::string what = fmt::format("{} indices", owner);
+  const std::size_t indexCount =
+      source.indices >= 0 ? reader_.elementCount(source.indices, what) : vertexCount;
+  checkTriangleBudget(trianglesSoFar + triangleCountFor(indexCount, source.mode), owner);
+  std::vector<std::uint32_t> indices;
+  if (source.indices >= 0) {
+    indices = reader_.readIndices(source.indices, what);
+    checkIndexRange(indices, vertexCount, what, source.indices);
+  } else {
+    indices.resize(vertexCount);
+    for (std::size_t i = 0; i < vertexCount; ++i) indices[i] = static_cast<std::uint32_t>(i);
+  }
+  primitive.indices = toTriangleList(std::move(indices), source.mode);
+  if (primitive.indices.size() % 3 != 0) {
+    ctx_.warnings.push_back(
+        fmt::format("{}: {} indices are not a whole number of triangles; "
+                    "the last {} dropped",
+                    owner, primitive.indices.size(), primitive.indices.size() % 3));
+    primitive.indices.resize(primitive.indices.size() - primitive.indices.size() % 3);
+  }
+}
+
+void PrimitiveConverter::checkIndexRange(const std::vector<std::uint32_t>& indices,
+                                         std::size_t vertexCount, const std::string& what,
+                                         int accessor) const {
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    if (indices[i] >= vertexCount) {
+      invalid(ctx_, fmt::format("{}: accessor {} has index {} at position {}, out of range for "
+                                "{} vertices",
+                                what, accessor, indices[i], i, vertexCount));
+    }
+  }
+}
+
+void PrimitiveConverter::checkTriangleBudget(std::size_t triangles,
+                                             const std::string& owner) const {
+  if (triangles > ctx_.limits.maxTriangles) {
+    tooLarge(ctx_, fmt::format("the asset has more than {} triangles (reached at {})",
+                               ctx_.limits.maxTriangles, owner));
+  }
+}
+
+void PrimitiveConverter::readAttributes(const tinygltf::Primitive& source, const std::string& owner,
+                                        Primitive& primitive) const {
+  const std::size_t count = primitive.vertices.size();
+  int components = 0;
+  const auto normals = readAttribute(source, "NORMAL", Semantic::Normal, owner, count, &components);
+  const auto tangents =
+      readAttribute(source, "TANGENT", Semantic::Tangent, owner, count, &components);
+  const auto uv0 =
+      readAttribute(source, "TEXCOORD_0", Semantic::TexCoord, owner, count, &components);
+  const auto uv1 =
+      readAttribute(source, "TEXCOORD_1", Semantic::TexCoord, owner, count, &components);
+  int colorComponents = 4;
+  const auto colors =
+      readAttribute(source, "COLOR_0", Semantic::Color, owner, count, &colorComponents);
+  std::size_t nonFinite = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    Vertex& v = primitive.vertices[i];
+    if (!normals.empty()) v.normal = {normals[i * 3], normals[i * 3 + 1], normals[i * 3 + 2]};
+    if (!tangents.empty()) {
+      v.tangent = {tangents[i * 4], tangents[i * 4 + 1], tangents[i * 4 + 2], tangents[i * 4 + 3]};
+    }
+    if (!uv0.empty()) v.uv0 = sanitized(glm::vec2(uv0[i * 2], uv0[i * 2 + 1]), 0.0F, nonFinite);
+    if (!uv1.empty()) v.uv1 = sanitized(glm::vec2(uv1[i * 2], uv1[i * 2 + 1]), 0.0F, nonFinite);
+    if (!colors.empty()) v.color = readColor(colors, i, colorComponents, nonFinite);
+  }
+  if (nonFinite > 0) {
+    ctx_.warnings.push_back(
+        fmt::format("{}: {} non-finite texture coordinate or colour values "
+                    "replaced",
+                    owner, nonFinite));
+  }
+  finishNormals(primitive, !normals.empty(), owner);
+  finishTangents(primitive, !tangents.empty(), tangentUvSet(primitive.material), owner);
+}
+
+void PrimitiveConverter::finishNormals(Primitive& primitive, bool hasNormals,
+                                       const std::string& owner) const {
+  if (!hasNormals) {
+    generateFlatNormals(primitive);  // glTF: "client implementations MUST calculate flat normals"
+    return;
+  }
+  if (const std::size_t repaired = repairNormals(primitive); repaired > 0) {
+    ctx_.warnings.push_back(
+        fmt::format("{}: {} zero-length or non-finite normals replaced by "
+                    "smooth normals",
+                    owner, repaired));
+  }
+}
+
+int PrimitiveConverter::tangentUvSet(int material) const {
+  if (material < 0) return 0;
+  const int texCoord = model_.materials[static_cast<std::size_t>(material)].normalTexture.texCoord;
+  return texCoord == 1 ? 1 : 0;
+}
+
+void PrimitiveConverter::finishTangents(Primitive& primitive, bool hasTangents, int uvSet,
+                                        const std::string& owner) const {
+  if (hasTangents && normalizeGivenTangents(primitive)) return;
+  if (hasTangents) {
+    ctx_.warnings.push_back(
+        fmt::format("{}: TANGENT has zero, non-finite or non-unit-w values; regenerated", owner));
+  }
+  generateTangents(primitive, uvSet);
+}
+
+}  // namespace lgh::gltf
