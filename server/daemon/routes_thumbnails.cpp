@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "base64.hpp"
 #include "http_util.hpp"
+#include "lgh/base64.hpp"
 #include "logging.hpp"
 #include "routes.hpp"
 #include "thumbnails.hpp"
@@ -122,7 +122,7 @@ json outcomeLine(const BatchRun& run, std::size_t i, const BatchRun::Outcome& ou
   line["scene_cache"] = result.sceneCacheHit ? "hit" : "miss";
   line["timings"] = result.timings.toJson();
   line["warnings"] = result.warnings;
-  line["image_base64"] = base64Encode(result.encoded);
+  line["image_base64"] = lgh::base64::encode(result.encoded);
   return line;
 }
 
