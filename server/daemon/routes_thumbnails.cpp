@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "clock.hpp"
 #include "http_util.hpp"
 #include "lgh/base64.hpp"
 #include "logging.hpp"
@@ -71,12 +72,8 @@ class BatchRun {
 
   json summary() const {
     return {
-        {"status", "done"},
-        {"total", size()},
-        {"ok", ok_},
-        {"failed", failed_},
-        {"request_id", requestId_},
-        {"elapsed_ms", std::chrono::duration<double, std::milli>(Clock::now() - start_).count()}};
+        {"status", "done"},  {"total", size()},          {"ok", ok_},
+        {"failed", failed_}, {"request_id", requestId_}, {"elapsed_ms", millisecondsSince(start_)}};
   }
   std::size_t failed() const { return failed_; }
   std::size_t ok() const { return ok_; }
