@@ -590,7 +590,7 @@ TEST(RequestParse, SchemaDefaultsMatchStructDefaults) {
 
 // --- Errors -----------------------------------------------------------------------------------
 
-// The HTTP status of each code is the daemon's business: tests/unit/test_daemon_api_error.cpp.
+// The HTTP status of each code is the daemon's business: tests/daemon/test_api_error.cpp.
 TEST(ErrorCodes, Names) {
   const std::vector<std::pair<ErrorCode, std::string>> expected{
       {ErrorCode::BadRequest, "bad_request"},  {ErrorCode::NotFound, "not_found"},
