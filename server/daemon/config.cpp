@@ -6,6 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "version.hpp"
+
 namespace lghd {
 namespace {
 
@@ -177,7 +179,7 @@ lgh::RequestLimits DaemonConfig::requestLimits() const {
 ParsedConfig parseConfig(int argc, char** argv) {
   CLI::App app{kDescription, "lghd"};
   app.footer(kFooter);
-  app.set_version_flag("--version", std::string("lghd ") + LGHD_VERSION);
+  app.set_version_flag("--version", std::string("lghd ") + kVersion);
   app.get_formatter()->column_width(34);
 
   DaemonConfig config;

@@ -5,15 +5,12 @@
 
 #include <fmt/format.h>
 
+#include "clock.hpp"
 #include "logging.hpp"
 #include "vulkan_probe_process.hpp"
 
 namespace lghd {
 namespace {
-
-double secondsBetween(Clock::time_point from, Clock::time_point to) {
-  return std::chrono::duration<double>(to - from).count();
-}
 
 lgh::RenderRequest selfTestRequest() {
   lgh::RenderRequest request;  // the demo scene
@@ -250,8 +247,7 @@ bool RenderQueue::bringUpRenderer() {
   device_ = renderer_->device();
   state_ = State::Ready;
   logging::event(spdlog::level::info, "ready",
-                 {{"device", device_->toJson()},
-                  {"startup_ms", secondsBetween(start, Clock::now()) * 1000.0}});
+                 {{"device", device_->toJson()}, {"startup_ms", millisecondsSince(start)}});
   return true;
 }
 
@@ -316,8 +312,7 @@ void RenderQueue::renderTicket(const RenderJob& job, RenderTicket& ticket) {
     } else {
       metrics_.recordRender("timeout");
       logging::event(spdlog::level::warn, "render_discarded",
-                     {{"request_id", job.requestId},
-                      {"render_ms", secondsBetween(start, Clock::now()) * 1000.0}});
+                     {{"request_id", job.requestId}, {"render_ms", millisecondsSince(start)}});
     }
   } catch (const lgh::Error& error) {
     ticket.fail(fromLghError(error));
@@ -329,7 +324,7 @@ void RenderQueue::renderTicket(const RenderJob& job, RenderTicket& ticket) {
     recoverRenderer(error.what());
   }
   std::lock_guard lock(mutex_);
-  const double seconds = secondsBetween(start, Clock::now());
+  const double seconds = secondsSince(start);
   averageRenderSeconds_ = 0.8 * averageRenderSeconds_ + 0.2 * seconds;
 }
 

@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
-#include "base64.hpp"
 #include "http_util.hpp"
+#include "lgh/base64.hpp"
 
 namespace lghd {
 namespace {
@@ -46,7 +46,7 @@ void setRenderHeaders(httplib::Response& response, const RenderAnswer& answer) {
 
 nlohmann::json renderResponseJson(const RenderAnswer& answer) {
   const lgh::RenderResult& result = answer.result;
-  return {{"image", base64Encode(result.encoded)},
+  return {{"image", lgh::base64::encode(result.encoded)},
           {"mime", result.mimeType},
           {"width", answer.width},
           {"height", answer.height},

@@ -4,17 +4,15 @@
 // without disturbing the render thread.
 #pragma once
 
-#include <chrono>
 #include <condition_variable>
 #include <mutex>
 #include <optional>
 
 #include "api_error.hpp"
+#include "clock.hpp"
 #include "lgh/renderer.hpp"
 
 namespace lghd {
-
-using Clock = std::chrono::steady_clock;
 
 class RenderTicket {
  public:

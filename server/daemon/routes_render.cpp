@@ -1,8 +1,7 @@
 // POST /v1/render: a render request as JSON, or multipart/form-data with the request in a part
 // named "request" and the scene uploaded in "file" parts. Answers the image, or JSON when the
 // client accepts application/json.
-#include <chrono>
-
+#include "clock.hpp"
 #include "http_util.hpp"
 #include "render_response.hpp"
 #include "routes.hpp"
@@ -27,10 +26,6 @@ lgh::RenderRequest parseUpload(const httplib::Request& http, const lgh::RequestL
 lgh::RenderRequest parseRender(const httplib::Request& http, const lgh::RequestLimits& limits) {
   if (http.is_multipart_form_data()) return parseUpload(http, limits);
   return lgh::parseRenderRequest(http.body.empty() ? std::string("{}") : http.body, limits);
-}
-
-double millisecondsBetween(Clock::time_point from, Clock::time_point to) {
-  return std::chrono::duration<double, std::milli>(to - from).count();
 }
 
 void render(DaemonContext& context, const httplib::Request& http, httplib::Response& response) {

@@ -7,8 +7,9 @@
 
 #include <fmt/format.h>
 
-#include "base64.hpp"
+#include "clock.hpp"
 #include "http_util.hpp"
+#include "lgh/base64.hpp"
 #include "logging.hpp"
 #include "routes.hpp"
 #include "thumbnails.hpp"
@@ -71,12 +72,8 @@ class BatchRun {
 
   json summary() const {
     return {
-        {"status", "done"},
-        {"total", size()},
-        {"ok", ok_},
-        {"failed", failed_},
-        {"request_id", requestId_},
-        {"elapsed_ms", std::chrono::duration<double, std::milli>(Clock::now() - start_).count()}};
+        {"status", "done"},  {"total", size()},          {"ok", ok_},
+        {"failed", failed_}, {"request_id", requestId_}, {"elapsed_ms", millisecondsSince(start_)}};
   }
   std::size_t failed() const { return failed_; }
   std::size_t ok() const { return ok_; }
@@ -122,7 +119,7 @@ json outcomeLine(const BatchRun& run, std::size_t i, const BatchRun::Outcome& ou
   line["scene_cache"] = result.sceneCacheHit ? "hit" : "miss";
   line["timings"] = result.timings.toJson();
   line["warnings"] = result.warnings;
-  line["image_base64"] = base64Encode(result.encoded);
+  line["image_base64"] = lgh::base64::encode(result.encoded);
   return line;
 }
 

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "clock.hpp"
 #include "http_util.hpp"
 #include "logging.hpp"
 #include "routes.hpp"
@@ -139,8 +140,7 @@ spdlog::level::level_enum accessLogLevel(const std::string& path, int status) {
 
 void accessLog(DaemonContext& context, const httplib::Request& request,
                const httplib::Response& response) {
-  const double seconds =
-      requestStart ? std::chrono::duration<double>(Clock::now() - *requestStart).count() : 0.0;
+  const double seconds = requestStart ? secondsSince(*requestStart) : 0.0;
   requestStart.reset();
   context.metrics.recordRequest(routeLabel(request.path), request.method, response.status, seconds);
   logging::event(accessLogLevel(request.path, response.status), "request",

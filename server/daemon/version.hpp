@@ -1,11 +1,12 @@
-// What was built: reported by /v1/info, /metrics and --version.
+// What was built: reported by /v1/info, /metrics and --version. The values come from CMake and
+// are compiled into version.cpp alone.
 #pragma once
 
 namespace lghd {
 
-inline constexpr const char* kVersion = LGHD_VERSION;
-inline constexpr const char* kBuildType = LGHD_BUILD_TYPE;
-inline constexpr const char* kCompiler = LGHD_COMPILER;
-inline constexpr const char* kImageIo = LGHD_IMAGE_IO;
+extern const char* const kVersion;
+extern const char* const kBuildType;
+extern const char* const kCompiler;
+extern const char* const kImageIo;
 
 }  // namespace lghd

@@ -8,8 +8,6 @@
 #include <limits>
 #include <map>
 #include <string>
-#include <tuple>
-#include <variant>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -17,7 +15,6 @@
 #include "lgh/error.hpp"
 #include "lgh/request.hpp"
 #include "lgh/timing.hpp"
-#include "request/base64.hpp"
 #include "request/embedded_proto.hpp"
 #include "request/schema_bundle.hpp"
 #include "request/valijson_include.hpp"
@@ -593,7 +590,7 @@ TEST(RequestParse, SchemaDefaultsMatchStructDefaults) {
 
 // --- Errors -----------------------------------------------------------------------------------
 
-// The HTTP status of each code is the daemon's business: tests/unit/test_daemon_api_error.cpp.
+// The HTTP status of each code is the daemon's business: tests/daemon/test_api_error.cpp.
 TEST(ErrorCodes, Names) {
   const std::vector<std::pair<ErrorCode, std::string>> expected{
       {ErrorCode::BadRequest, "bad_request"},  {ErrorCode::NotFound, "not_found"},
@@ -602,46 +599,6 @@ TEST(ErrorCodes, Names) {
       {ErrorCode::Internal, "internal"},
   };
   for (const auto& [code, name] : expected) EXPECT_EQ(errorCodeName(code), name);
-}
-
-// --- Base64 -----------------------------------------------------------------------------------
-
-TEST(Base64, Rfc4648Vectors) {
-  const std::map<std::string, std::string> vectors{
-      {"", ""},
-      {"Zg==", "f"},
-      {"Zm8=", "fo"},
-      {"Zm9v", "foo"},
-      {"Zm9vYg==", "foob"},
-      {"Zm9vYmE=", "fooba"},
-      {"Zm9vYmFy", "foobar"},
-      {"+/+/", "\xfb\xff\xbf"},
-  };
-  for (const auto& [encoded, decoded] : vectors) {
-    const auto result = base64::decode(encoded);
-    const auto* bytes = std::get_if<std::vector<std::uint8_t>>(&result);
-    ASSERT_NE(bytes, nullptr) << encoded;
-    EXPECT_EQ(std::string(bytes->begin(), bytes->end()), decoded) << encoded;
-    EXPECT_EQ(base64::decodedSize(encoded), decoded.size()) << encoded;
-  }
-}
-
-TEST(Base64, RejectsWithReasonAndOffset) {
-  using Reason = base64::DecodeError::Reason;
-  const std::vector<std::tuple<std::string, Reason, std::size_t>> bad{
-      {"Zm9", Reason::Length, 3},           {"Zm9!", Reason::Character, 3},
-      {"Z=9v", Reason::Character, 1},       {"Zh==", Reason::PaddingBits, 1},
-      {"Zm9=Zm9v", Reason::Character, 3},   {"=m9v", Reason::Character, 0},
-      {"Z===", Reason::Character, 1},       {"Zm9v\nZm9v", Reason::Character, 4},
-      {"Zm9vYmF=", Reason::PaddingBits, 6},
-  };
-  for (const auto& [encoded, reason, offset] : bad) {
-    const auto result = base64::decode(encoded);
-    const auto* error = std::get_if<base64::DecodeError>(&result);
-    ASSERT_NE(error, nullptr) << encoded;
-    EXPECT_EQ(error->reason, reason) << encoded;
-    EXPECT_EQ(error->offset, offset) << encoded;
-  }
 }
 
 // --- Proto documents --------------------------------------------------------------------------

@@ -17,9 +17,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "lgh/base64.hpp"
 #include "lgh/error.hpp"
 #include "lgh/request.hpp"
-#include "request/base64.hpp"
 #include "request/json_pointer.hpp"
 #include "request/json_text.hpp"
 #include "request/schema_validation.hpp"

@@ -1,19 +1,19 @@
-#include "request/base64.hpp"
+#include "lgh/base64.hpp"
 
 #include <array>
 
 namespace lgh::base64 {
 namespace {
 
+constexpr std::string_view kAlphabet =
+    "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
 constexpr int kInvalid = -1;
 
 constexpr std::array<int, 256> makeDecodeTable() {
   std::array<int, 256> table{};
   table.fill(kInvalid);
-  constexpr std::string_view alphabet =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  for (std::size_t i = 0; i < alphabet.size(); ++i) {
-    table[static_cast<unsigned char>(alphabet[i])] = static_cast<int>(i);
+  for (std::size_t i = 0; i < kAlphabet.size(); ++i) {
+    table[static_cast<unsigned char>(kAlphabet[i])] = static_cast<int>(i);
   }
   return table;
 }
@@ -36,7 +36,34 @@ std::optional<std::size_t> firstInvalidCharacter(std::string_view data) {
   return std::nullopt;
 }
 
+// The character of the 6 bits of `group` that start `shift` bits above its lowest bit.
+char character(std::uint32_t group, int shift) { return kAlphabet[(group >> shift) & 63U]; }
+
 }  // namespace
+
+std::string encode(std::span<const std::uint8_t> bytes) {
+  std::string text;
+  text.reserve((bytes.size() + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 2 < bytes.size(); i += 3) {
+    const std::uint32_t group = (std::uint32_t{bytes[i]} << 16U) |
+                                (std::uint32_t{bytes[i + 1]} << 8U) | std::uint32_t{bytes[i + 2]};
+    text += character(group, 18);
+    text += character(group, 12);
+    text += character(group, 6);
+    text += character(group, 0);
+  }
+  const std::size_t rest = bytes.size() - i;
+  if (rest > 0) {
+    const std::uint32_t group =
+        (std::uint32_t{bytes[i]} << 16U) | (rest == 2 ? std::uint32_t{bytes[i + 1]} << 8U : 0U);
+    text += character(group, 18);
+    text += character(group, 12);
+    text += rest == 2 ? character(group, 6) : '=';
+    text += '=';
+  }
+  return text;
+}
 
 std::optional<std::size_t> decodedSize(std::string_view text) {
   if (text.size() % 4 != 0) return std::nullopt;

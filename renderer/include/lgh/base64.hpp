@@ -1,16 +1,24 @@
-// Strict base64 (RFC 4648 section 4, standard alphabet): padding required, no whitespace, no
-// line breaks, no non-zero bits in the padding. Lenient decoders accept garbage that then fails
-// later as a "broken GLB"; refusing it here names the real problem.
+// Base64 (RFC 4648 section 4, standard alphabet, with padding), both directions: the renderer
+// decodes inline GLB scenes (scene.glb_base64), the daemon encodes images inside JSON answers.
+//
+// The decoder is strict: padding required, no whitespace, no line breaks, no non-zero bits in the
+// padding. Lenient decoders accept garbage that then fails later as a "broken GLB"; refusing it
+// here names the real problem.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
+#include <string>
 #include <string_view>
 #include <variant>
 #include <vector>
 
 namespace lgh::base64 {
+
+// `bytes` as base64 text, padded to a multiple of 4 characters.
+std::string encode(std::span<const std::uint8_t> bytes);
 
 struct DecodeError {
   enum class Reason {
