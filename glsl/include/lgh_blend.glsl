@@ -1,6 +1,6 @@
 // LGH blending functions (Yuksel & Yuksel 2017; Lin & Yuksel 2019, Fig. 2), mirrored in
-// renderer/src/lightgrid/lgh_blend.hpp (tests/unit/test_lgh_blend.cpp checks the partition of unity;
-// tests/integration/test_lgh_build.cpp checks this file against the mirror).
+// renderer/testing/include/lgh/testing/lgh_blend.hpp (tests/unit/test_lgh_blend.cpp checks the
+// partition of unity; tests/integration/test_lgh_build.cpp checks this file against the mirror).
 //
 // d: distance from the shaded point to the grid light; r_l = alpha * h_l = alpha * h_1 * 2^(l-1).
 // Lighting uses levels startLevel..topLevel. With rise_l(d) = clamp(d / r_(l-1) - 1, 0, 1)

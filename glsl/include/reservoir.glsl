@@ -1,7 +1,7 @@
 // Shadow-sample selection by streaming weighted reservoir sampling (Lin & Yuksel 2019, Sec. 3.3
-// and Appendix A), mirrored operation by operation in renderer/src/passes/reservoir.hpp
-// (tests/unit/test_reservoir.cpp checks the mirror, tests/integration/test_lgh_lighting.cpp this
-// file on the GPU).
+// and Appendix A), mirrored operation by operation in
+// renderer/testing/include/lgh/testing/reservoir.hpp (tests/unit/test_reservoir.cpp checks the
+// mirror, tests/integration/test_lgh_lighting.cpp this file on the GPU).
 //
 // A pixel keeps a running sum F of the weights f_i of the lights streamed so far. Light i, with
 // f_i > 0, first adds f_i to F and then replaces each of the k samples independently with

@@ -6,9 +6,11 @@
 #include <iostream>
 #include <string>
 
+#include <fmt/format.h>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "bench/result_json.hpp"
 #include "cli_common.hpp"
 
 namespace lgh::bench {
@@ -18,16 +20,25 @@ struct Command {
   std::function<int()> run;  // exit status; may throw lgh::Error
 };
 
-// Prints a benchmark's result: the table on stdout, or with --json the JSON document on stdout
-// and the table on stderr (so that `> out.json` keeps both). Returns the exit status.
-inline int printResult(const nlohmann::json& result, const std::string& table, bool json) {
+// Prints a benchmark's typed result: the table on stdout, or with --json the JSON document
+// (bench/result_json.hpp) on stdout and the table on stderr (so that `> out.json` keeps both).
+// Returns the exit status.
+template <typename Result>
+int printResult(const Result& result, const std::string& table, bool json) {
   if (json) {
     std::cerr << table;
-    std::cout << result.dump(2) << '\n';
+    std::cout << nlohmann::json(result).dump(2) << '\n';
   } else {
     std::cout << table;
   }
   return 0;
+}
+
+// A VPL count as the tables label it: 1000 -> "1K", 2000000 -> "2M", 1500 -> "1500".
+inline std::string countLabel(int count) {
+  if (count >= 1000000 && count % 1000000 == 0) return fmt::format("{}M", count / 1000000);
+  if (count >= 1000 && count % 1000 == 0) return fmt::format("{}K", count / 1000);
+  return std::to_string(count);
 }
 
 // `lgh-bench construct`: LGH construction timings (server/bench/construct.cpp).

@@ -3,17 +3,16 @@
 // milliseconds; with --json the JSON document goes to stdout and the table to stderr.
 #include <algorithm>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "bench/bench_command.hpp"
+#include "lgh/bench/construct_benchmark.hpp"
+#include "lgh/enum_names.hpp"
 #include "lgh/error.hpp"
-#include "lgh/lgh_benchmark.hpp"
 
 namespace lgh::bench {
 namespace {
@@ -35,12 +34,6 @@ struct ConstructFlags {
   int height = 720;
 };
 
-std::string countLabel(int count) {
-  if (count >= 1000000 && count % 1000000 == 0) return fmt::format("{}M", count / 1000000);
-  if (count >= 1000 && count % 1000 == 0) return fmt::format("{}K", count / 1000);
-  return std::to_string(count);
-}
-
 int parseLevels(const std::string& text) {
   if (text == "auto") return 0;
   try {
@@ -60,64 +53,63 @@ std::vector<LghSettings::Method> parseMethods(const std::string& text) {
 }
 
 // Column labels name the method and the S1 path only when the runs differ in them.
-std::string formatTable(const nlohmann::json& result, bool labelMethods, bool labelS1) {
-  const auto& runs = result["runs"];
+std::string formatTable(const ConstructBenchmarkResult& result, bool labelMethods, bool labelS1) {
+  const auto& runs = result.runs;
   std::vector<std::string> columns;
   std::vector<std::string> steps;
   std::size_t maxLevels = 0;
-  for (const auto& run : runs) {
-    std::string label = countLabel(run["vpls"].get<int>());
-    if (labelS1) label.insert(0, run["s1"].get<std::string>() + " ");
-    if (labelMethods) label.insert(0, run["method"].get<std::string>() + " ");
+  for (const ConstructRun& run : runs) {
+    std::string label = countLabel(run.vpls);
+    if (labelS1) label.insert(0, std::string(run.binnedS1 ? "binned" : "direct") + " ");
+    if (labelMethods) label.insert(0, std::string(enumName(run.method)) + " ");
     columns.push_back(label);
-    for (const auto& step : run["steps"]) {
-      const auto name = step["name"].get<std::string>();
-      if (std::find(steps.begin(), steps.end(), name) == steps.end()) steps.push_back(name);
+    for (const TimingStats& step : run.steps) {
+      if (std::find(steps.begin(), steps.end(), step.name) == steps.end()) {
+        steps.push_back(step.name);
+      }
     }
-    maxLevels = std::max(maxLevels, run["level_counts"].size());
+    maxLevels = std::max(maxLevels, run.levelCounts.size());
   }
   std::size_t width = 10;
   for (const auto& column : columns) width = std::max(width, column.size() + 2);
   std::string out = fmt::format("LGH construction on {} ({}), median of {} iterations [GPU ms]\n",
-                                result["device"].value("gl_renderer", std::string("?")),
-                                result["device"].value("context_path", std::string("?")),
-                                result["settings"]["timed_iterations"].get<int>());
+                                result.device.glRenderer, result.device.contextPath,
+                                result.options.timedIterations);
   out += fmt::format("{:<18}", "step");
   for (const auto& column : columns) out += fmt::format("{:>{}}", column, width);
   out += '\n';
   auto row = [&](const std::string& name, auto&& cell) {
     out += fmt::format("{:<18}", name);
-    for (const auto& run : runs) out += fmt::format("{:>{}}", cell(run), width);
+    for (const ConstructRun& run : runs) out += fmt::format("{:>{}}", cell(run), width);
     out += '\n';
   };
   for (const auto& step : steps) {
-    row(step, [&](const nlohmann::json& run) -> std::string {
-      for (const auto& s : run["steps"]) {
-        if (s["name"] == step) return fmt::format("{:.3f}", s["median_ms"].get<double>());
+    row(step, [&](const ConstructRun& run) -> std::string {
+      for (const TimingStats& s : run.steps) {
+        if (s.name == step) return fmt::format("{:.3f}", s.medianMs);
       }
       return "-";
     });
   }
-  row("total", [](const nlohmann::json& run) {
-    return fmt::format("{:.3f}", run["total_ms"].get<double>());
-  });
-  row("total, 1 timer", [](const nlohmann::json& run) {
-    return fmt::format("{:.3f}", run["total_without_step_timers_ms"].get<double>());
-  });
-  row("levels", [](const nlohmann::json& run) { return std::to_string(run["levels"].get<int>()); });
+  row("total", [](const ConstructRun& run) { return fmt::format("{:.3f}", run.totalMs); });
+  row("total, 1 timer",
+      [](const ConstructRun& run) { return fmt::format("{:.3f}", run.totalWithoutStepTimersMs); });
+  row("levels", [](const ConstructRun& run) { return std::to_string(run.levels); });
   for (std::size_t l = 0; l < maxLevels; ++l) {
-    row(fmt::format("|S{}|", l + 1), [&](const nlohmann::json& run) -> std::string {
-      const auto& counts = run["level_counts"];
-      return l < counts.size() ? std::to_string(counts[l].get<std::uint32_t>()) : "-";
+    row(fmt::format("|S{}|", l + 1), [&](const ConstructRun& run) -> std::string {
+      return l < run.levelCounts.size() ? std::to_string(run.levelCounts[l]) : "-";
     });
   }
-  row("grid lights", [](const nlohmann::json& run) {
-    return std::to_string(run["grid_lights"].get<std::uint32_t>());
-  });
-  row("readback CPU ms", [](const nlohmann::json& run) {
-    return fmt::format("{:.3f}", run["readback_ms"].get<double>());
-  });
+  row("grid lights", [](const ConstructRun& run) { return std::to_string(run.gridLights); });
+  row("readback CPU ms",
+      [](const ConstructRun& run) { return fmt::format("{:.3f}", run.readbackMs); });
   return out;
+}
+
+std::string progressLine(const ConstructRun& run) {
+  return fmt::format("lgh construct: {} VPLs, {}, {} S1: {} levels, {} grid lights, {:.3f} ms",
+                     run.vpls, enumName(run.method), run.binnedS1 ? "binned" : "direct", run.levels,
+                     run.gridLights, run.totalMs);
 }
 
 int runConstruct(const ConstructFlags& flags, const cli::ContextFlags& context) {
@@ -134,8 +126,8 @@ int runConstruct(const ConstructFlags& flags, const cli::ContextFlags& context) 
   options.seed = flags.seed;
   options.totalFlux = flags.flux;
   options.vplOrder = flags.order;
-  options.progress = [](const std::string& line) { std::cerr << line << '\n'; };
-  const nlohmann::json result = runConstructBenchmark(options);
+  options.progress = [](const ConstructRun& run) { std::cerr << progressLine(run) << '\n'; };
+  const ConstructBenchmarkResult result = runConstructBenchmark(options);
   return printResult(result, formatTable(result, options.methods.size() > 1, options.s1 == "both"),
                      flags.json);
 }

@@ -2,17 +2,18 @@
 // paths, each interleaving and shadow-sample count (the paper's Tables 2 and 3, Fig. 5), with the
 // relative RMSE / PSNR of every run against the brute-force image. Prints one row per run (median
 // GPU milliseconds); with --json the JSON document goes to stdout and the table to stderr.
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "bench/bench_command.hpp"
+#include "lgh/bench/render_benchmark.hpp"
+#include "lgh/enum_names.hpp"
 #include "lgh/error.hpp"
-#include "lgh/lgh_render_benchmark.hpp"
 
 namespace lgh::bench {
 namespace {
@@ -35,59 +36,60 @@ struct RenderFlags {
   float intensity = 1.0F;
 };
 
-std::string countLabel(int count) {
-  if (count >= 1000000 && count % 1000000 == 0) return fmt::format("{}M", count / 1000000);
-  if (count >= 1000 && count % 1000 == 0) return fmt::format("{}K", count / 1000);
-  return std::to_string(count);
-}
-
-double passMedian(const nlohmann::json& run, const std::string& name) {
-  for (const auto& pass : run["passes"]) {
-    if (pass["name"] == name) return pass["median_ms"].get<double>();
+double passMedian(const RenderRun& run, const std::string& name) {
+  for (const TimingStats& pass : run.passes) {
+    if (pass.name == name) return pass.medianMs;
   }
   return 0.0;
 }
 
-std::string formatTable(const nlohmann::json& result) {
-  const auto& settings = result["settings"];
+std::string formatTable(const RenderBenchmarkResult& result) {
+  const RenderBenchmarkOptions& settings = result.options;
   std::string out =
       fmt::format("LGH rendering on {} ({}), {}x{}, alpha {}, median of {} frames [GPU ms]\n",
-                  result["device"].value("gl_renderer", std::string("?")),
-                  result["device"].value("context_path", std::string("?")),
-                  settings["width"].get<int>(), settings["height"].get<int>(),
-                  settings["alpha"].get<float>(), settings["timed_iterations"].get<int>());
+                  result.device.glRenderer, result.device.contextPath, settings.width,
+                  settings.height, settings.alpha, settings.timedIterations);
   out += fmt::format(
       "{:>6} {:>8} {:>6} {:>2} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>7} {:>9} {:>6}\n",
       "VPLs", "path", "inter.", "k", "locked", "gbuffer", "build", "split", "light", "compos.",
       "lighting", "render", "relRMSE", "PSNR dB", "overdr");
-  for (const auto& run : result["runs"]) {
-    const std::string rmse = run.contains("relative_rmse")
-                                 ? fmt::format("{:.4f}", run["relative_rmse"].get<double>())
-                                 : "-";
+  for (const RenderRun& run : result.runs) {
+    std::string rmse = "-";
     std::string psnr = "-";
-    if (run.contains("psnr")) {
-      psnr = run["psnr"].is_number() ? fmt::format("{:.2f}", run["psnr"].get<double>()) : "inf";
+    if (run.error) {
+      rmse = fmt::format("{:.4f}", run.error->relativeRmse);
+      psnr = std::isfinite(run.error->psnr) ? fmt::format("{:.2f}", run.error->psnr) : "inf";
     }
-    const std::string overdraw = run.contains("overdraw") && run["overdraw"].contains("mean")
-                                     ? fmt::format("{:.1f}", run["overdraw"]["mean"].get<double>())
-                                     : "-";
+    const std::string overdraw =
+        run.overdraw && run.overdraw->pixels > 0 ? fmt::format("{:.1f}", run.overdraw->mean) : "-";
     out += fmt::format(
         "{:>6} {:>8} {:>6} {:>2} {:>6} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f} "
         "{:>9.3f} "
         "{:>7} {:>9} {:>6}\n",
-        countLabel(run["vpls"].get<int>()), run["path"].get<std::string>(),
-        run["interleave"].get<std::string>(), run["shadow_samples"].get<int>(),
-        run["locked"].get<bool>() ? "yes" : "no", passMedian(run, "gbuffer"),
-        run["build_ms"].get<double>(), passMedian(run, "lgh interleave split"),
-        passMedian(run, "lgh lighting"), passMedian(run, "lgh interleave composite"),
-        run["lighting_ms"].get<double>(), run["render_ms"].get<double>(), rmse, psnr, overdraw);
+        countLabel(run.vpls), enumName(run.path), enumName(run.interleave), run.shadowSamples,
+        run.locked ? "yes" : "no", passMedian(run, "gbuffer"), run.buildMs,
+        passMedian(run, "lgh interleave split"), passMedian(run, "lgh lighting"),
+        passMedian(run, "lgh interleave composite"), run.lightingMs, run.renderMs, rmse, psnr,
+        overdraw);
   }
-  for (const auto& reference : result["references"]) {
-    out += fmt::format("brute-force reference, {} VPLs: {:.3f} ms\n",
-                       countLabel(reference["vpls"].get<int>()),
-                       reference["bruteforce_ms"].get<double>());
+  for (const RenderReference& reference : result.references) {
+    out += fmt::format("brute-force reference, {} VPLs: {:.3f} ms\n", countLabel(reference.vpls),
+                       reference.bruteforceMs);
   }
   return out;
+}
+
+std::string progressLine(const RenderRun& run) {
+  std::string line = fmt::format(
+      "lgh render: {} VPLs, {}, interleave {}, {} sample(s){}: lighting {:.3f} ms, render {:.3f} "
+      "ms",
+      run.vpls, enumName(run.path), enumName(run.interleave), run.shadowSamples,
+      run.locked ? ", locked" : "", run.lightingMs, run.renderMs);
+  if (run.error) line += fmt::format(", rel. RMSE {:.4f}", run.error->relativeRmse);
+  if (run.overdraw && run.overdraw->pixels > 0) {
+    line += fmt::format(", overdraw {:.1f}", run.overdraw->mean);
+  }
+  return line;
 }
 
 std::vector<LightingPath> parsePaths(const std::vector<std::string>& names) {
@@ -126,8 +128,8 @@ int runRender(const RenderFlags& flags, const cli::ContextFlags& context) {
   options.renderer = cli::rendererOptions(context);
   options.seed = flags.seed;
   options.vplIntensity = flags.intensity;
-  options.progress = [](const std::string& line) { std::cerr << line << '\n'; };
-  const nlohmann::json result = runRenderBenchmark(options);
+  options.progress = [](const RenderRun& run) { std::cerr << progressLine(run) << '\n'; };
+  const RenderBenchmarkResult result = runRenderBenchmark(options);
   return printResult(result, formatTable(result), flags.json);
 }
 

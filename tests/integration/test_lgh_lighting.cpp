@@ -24,8 +24,8 @@
 #include "context/gl_context.hpp"
 #include "frame_pipeline.hpp"
 #include "gl/shader_library.hpp"
-#include "lgh/image_metrics.hpp"
-#include "passes/reservoir.hpp"
+#include "lgh/testing/image_metrics.hpp"
+#include "lgh/testing/reservoir.hpp"
 #include "scene/scene_cache.hpp"
 #include "test_support.hpp"
 

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "lgh/error.hpp"
-#include "lgh/image_metrics.hpp"
+#include "lgh/testing/image_metrics.hpp"
 
 namespace {
 

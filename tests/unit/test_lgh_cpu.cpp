@@ -1,7 +1,8 @@
-// The CPU reference of the LGH build (renderer/src/lightgrid/lgh_cpu_reference.hpp) and the VPL
-// sampler: hand-computed cases, the invariants every level must keep (total intensity of the
-// input, centres inside the lights' bounds, variance >= 0, top level <= 8 lights), the paper's
-// auto-level rule, degenerate inputs. Tolerances: 1e-9 relative (double sums of float inputs).
+// The CPU reference of the LGH build (renderer/testing: lgh/testing/lgh_cpu_reference.hpp) and
+// the VPL sampler: hand-computed cases, the invariants every level must keep (total intensity of
+// the input, centres inside the lights' bounds, variance >= 0, top level <= 8 lights), the
+// paper's auto-level rule, degenerate inputs. Tolerances: 1e-9 relative (double sums of float
+// inputs).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,8 +10,8 @@
 #include <limits>
 
 #include "lgh/error.hpp"
-#include "lightgrid/lgh_cpu_reference.hpp"
-#include "lightgrid/light_sets.hpp"
+#include "lgh/testing/lgh_cpu_reference.hpp"
+#include "lgh/testing/light_sets.hpp"
 #include "lightgrid/vpl_sampler.hpp"
 #include "scene/demo_scene.hpp"
 

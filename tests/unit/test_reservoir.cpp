@@ -1,9 +1,9 @@
-// The C++ mirror of the shadow-sample reservoir (renderer/src/passes/reservoir.hpp, the same code
-// as glsl/include/reservoir.glsl): selection frequencies match f_i / sum f by a chi-square test
-// (fixed seeds, p-value threshold 1e-3), whatever the order the lights stream in; the k samples
-// of a pixel are independent; the jitter has the light's variance; the weights make the ratio
-// estimator's mean the f-weighted visibility. tests/integration/test_lgh_lighting.cpp runs the
-// GLSL on the GPU against this mirror.
+// The C++ mirror of the shadow-sample reservoir (renderer/testing: lgh/testing/reservoir.hpp, the
+// same code as glsl/include/reservoir.glsl): selection frequencies match f_i / sum f by a
+// chi-square test (fixed seeds, p-value threshold 1e-3), whatever the order the lights stream in;
+// the k samples of a pixel are independent; the jitter has the light's variance; the weights make
+// the ratio estimator's mean the f-weighted visibility. tests/integration/test_lgh_lighting.cpp
+// runs the GLSL on the GPU against this mirror.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +12,7 @@
 #include <numeric>
 #include <vector>
 
-#include "passes/reservoir.hpp"
+#include "lgh/testing/reservoir.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "lightgrid/lgh_cpu_reference.hpp"
+#include "lgh/testing/lgh_cpu_reference.hpp"
 
 #include <algorithm>
 #include <cmath>

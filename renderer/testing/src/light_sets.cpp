@@ -1,4 +1,4 @@
-#include "lightgrid/light_sets.hpp"
+#include "lgh/testing/light_sets.hpp"
 
 #include <algorithm>
 #include <cmath>

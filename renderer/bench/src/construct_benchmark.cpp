@@ -1,39 +1,22 @@
+#include "lgh/bench/construct_benchmark.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <map>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "context/gl_context.hpp"
 #include "gl/gpu_timer.hpp"
 #include "lgh/error.hpp"
-#include "lgh/lgh_benchmark.hpp"
 #include "lightgrid/lgh_builder.hpp"
 #include "lightgrid/vpl_sampler.hpp"
 #include "scene/demo_scene.hpp"
 
-namespace lgh {
+namespace lgh::bench {
 namespace {
 
 constexpr const char* kTotalPass = "lgh build";
-
-struct Samples {
-  std::vector<std::string> order;  // step names in first-seen order
-  std::map<std::string, std::vector<double>> values;
-  void add(const std::string& name, double ms) {
-    if (!values.contains(name)) order.push_back(name);
-    values[name].push_back(ms);
-  }
-};
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const std::size_t mid = values.size() / 2;
-  return values.size() % 2 == 1 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
-}
 
 double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -56,10 +39,6 @@ std::vector<LghS1Scatter> parseS1(const std::string& name) {
   if (name == "both") return {LghS1Scatter::Direct, LghS1Scatter::Binned};
   throw Error(ErrorCode::BadRequest, "s1 must be auto, direct, binned or both, not '" + name + "'",
               "s1");
-}
-
-const char* methodName(LghSettings::Method method) {
-  return method == LghSettings::Method::Gather ? "gather" : "scatter";
 }
 
 // 30-bit Morton code of p in the box [lo, hi].
@@ -123,12 +102,13 @@ bool beyondTop(const std::string& step, int levelCount) {
          step.find_first_of(" +", 5) == std::string::npos && level > levelCount;
 }
 
-nlohmann::json timedRun(LghBuilder& builder, GLuint lights, int count,
-                        const LghBuildSettings& settings,
-                        const ConstructBenchmarkOptions& options) {
+// Times `options.timedIterations` builds step by step, then as many as a whole; fills the run's
+// hierarchy and timing fields.
+void timedRun(LghBuilder& builder, GLuint lights, int count, const LghBuildSettings& settings,
+              const ConstructBenchmarkOptions& options, ConstructRun& run) {
   for (int i = 0; i < options.warmupIterations; ++i) builder.build(lights, count, settings);
   glFinish();
-  Samples samples;
+  TimingSamples samples;
   for (int i = 0; i < options.timedIterations; ++i) {
     gl::GpuTimer timer;
     {
@@ -153,37 +133,28 @@ nlohmann::json timedRun(LghBuilder& builder, GLuint lights, int count,
   }
   const auto readStart = std::chrono::steady_clock::now();
   const LghLevelTable levels = builder.readLevels();
-  const double readbackMs = msSince(readStart);
+  run.readbackMs = msSince(readStart);
 
-  nlohmann::json steps = nlohmann::json::array();
-  for (const std::string& name : samples.order) {
+  for (const std::string& name : samples.names()) {
     if (name == kTotalPass || beyondTop(name, levels.levelCount)) continue;
-    const auto& values = samples.values[name];
-    steps.push_back({{"name", name},
-                     {"median_ms", median(values)},
-                     {"min_ms", *std::min_element(values.begin(), values.end())},
-                     {"max_ms", *std::max_element(values.begin(), values.end())}});
+    run.steps.push_back(samples.stats(name));
   }
-  nlohmann::json counts = nlohmann::json::array();
-  for (const LghLevelInfo& level : levels.levels) counts.push_back(level.count);
-  return {{"levels", levels.levelCount},
-          {"fit_levels", levels.fitLevels},
-          {"atomics", levels.fixedPoint ? "fixed-point" : "float"},
-          {"contributing_lights", levels.contributingCount},
-          {"level_counts", counts},
-          {"candidate_s1", levels.candidateS1},
-          {"grid_lights", levels.totalLights},
-          {"overflow", levels.overflow},
-          {"steps", steps},
-          {"total_ms", median(samples.values[kTotalPass])},
-          {"total_without_step_timers_ms", median(totals)},
-          {"readback_ms", readbackMs},
-          {"gpu_bytes", builder.allocatedBytes()}};
+  run.levels = levels.levelCount;
+  run.fitLevels = levels.fitLevels;
+  run.fixedPointAtomics = levels.fixedPoint;
+  run.contributingLights = levels.contributingCount;
+  for (const LghLevelInfo& level : levels.levels) run.levelCounts.push_back(level.count);
+  run.candidateS1 = levels.candidateS1;
+  run.gridLights = levels.totalLights;
+  run.overflow = levels.overflow;
+  run.totalMs = samples.median(kTotalPass);
+  run.totalWithoutStepTimersMs = median(totals);
+  run.gpuBytes = builder.allocatedBytes();
 }
 
 }  // namespace
 
-nlohmann::json runConstructBenchmark(const ConstructBenchmarkOptions& options) {
+ConstructBenchmarkResult runConstructBenchmark(const ConstructBenchmarkOptions& options) {
   checkOptions(options);
   const LghAtomics atomics = parseAtomics(options.atomics);
   const std::vector<LghS1Scatter> s1Modes = parseS1(options.s1);
@@ -191,7 +162,9 @@ nlohmann::json runConstructBenchmark(const ConstructBenchmarkOptions& options) {
   const Scene scene = makeDemoScene();
   LghBuilder builder;
   gl::SizedBuffer lightBuffer;
-  nlohmann::json runs = nlohmann::json::array();
+  ConstructBenchmarkResult result;
+  result.options = options;
+  result.options.progress = nullptr;
   for (int count : options.vplCounts) {
     const auto sampleStart = std::chrono::steady_clock::now();
     std::vector<PointLight> vpls =
@@ -207,39 +180,19 @@ nlohmann::json runConstructBenchmark(const ConstructBenchmarkOptions& options) {
         settings.atomics = atomics;
         settings.s1 = s1;
         settings.splitLevels = options.perLevelTimings;
-        nlohmann::json run = timedRun(builder, lightBuffer.id(), count, settings, options);
-        const char* s1Name = lghUseBinnedS1(settings, count) ? "binned" : "direct";
-        run["vpls"] = count;
-        run["method"] = methodName(method);
-        run["s1"] = s1Name;
-        run["vpl_sampling_cpu_ms"] = sampleMs;
-        if (options.progress) {
-          options.progress(
-              fmt::format("lgh construct: {} VPLs, {}, {} S1: {} levels, {} grid lights, {:.3f} ms",
-                          count, methodName(method), s1Name, run["levels"].get<int>(),
-                          run["grid_lights"].get<std::uint32_t>(), run["total_ms"].get<double>()));
-        }
-        runs.push_back(std::move(run));
+        ConstructRun run;
+        run.vpls = count;
+        run.method = method;
+        run.binnedS1 = lghUseBinnedS1(settings, count);
+        run.vplSamplingCpuMs = sampleMs;
+        timedRun(builder, lightBuffer.id(), count, settings, options, run);
+        if (options.progress) options.progress(run);
+        result.runs.push_back(std::move(run));
       }
     }
   }
-  nlohmann::json methods = nlohmann::json::array();
-  for (LghSettings::Method method : options.methods) methods.push_back(methodName(method));
-  return {
-      {"benchmark", "lgh-construct"},
-      {"device", context->info().toJson()},
-      {"settings",
-       {{"levels", options.levels == 0 ? nlohmann::json("auto") : nlohmann::json(options.levels)},
-        {"methods", methods},
-        {"warmup_iterations", options.warmupIterations},
-        {"timed_iterations", options.timedIterations},
-        {"per_level_timings", options.perLevelTimings},
-        {"atomics", options.atomics},
-        {"s1", options.s1},
-        {"vpl_order", options.vplOrder},
-        {"seed", options.seed},
-        {"scene", "demo"}}},
-      {"runs", runs}};
+  result.device = context->info();
+  return result;
 }
 
-}  // namespace lgh
+}  // namespace lgh::bench

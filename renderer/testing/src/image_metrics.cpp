@@ -1,4 +1,4 @@
-#include "lgh/image_metrics.hpp"
+#include "lgh/testing/image_metrics.hpp"
 
 #include <cmath>
 #include <limits>

@@ -1,6 +1,6 @@
-// Synthetic point-light sets for tests and benchmarks (seeded, deterministic): uniform in a box,
-// Gaussian clusters, on a plane, and on the vertices of a lattice. Intensities are random colours
-// scaled so the set's total luminance is about `flux`.
+// Synthetic point-light sets for tests (seeded, deterministic): uniform in a box, Gaussian
+// clusters, on a plane, and on the vertices of a lattice. Intensities are random colours scaled so
+// the set's total luminance is about `flux`.
 #pragma once
 
 #include <cstdint>
