@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -55,6 +56,10 @@ std::vector<lgh::RenderRequest> renders(std::size_t count) {
 
 RenderQueue::Options queueOptions(std::size_t capacity, std::chrono::milliseconds delay) {
   RenderQueue::Options options;
+  // The suite's context path, as for lghd (scripts/run-tests runs it on each).
+  if (const char* backend = std::getenv("LGH_BACKEND"); backend != nullptr && *backend != 0) {
+    options.renderer.backend = lgh::parseContextBackend(backend);
+  }
   options.capacity = capacity;
   options.testRenderDelay = delay;
   return options;
@@ -352,14 +357,15 @@ TEST_F(RenderQueueTest, DrainPastTheGraceCancelsTheRest) {
   EXPECT_TRUE(queue.stop(30s));
 }
 
-// No working context (the osmesa backend is refused on every machine): the fatal handler runs,
-// and the queue answers 503 with the reason.
+// No working context (an EGL device index no machine here has): the fatal handler runs, and the
+// queue answers 503 with the reason.
 TEST_F(RenderQueueTest, NoContextIsFatalAnd503) {
   RenderQueue::Options options = queueOptions(4, 0ms);
-  options.renderer.backend = lgh::ContextBackend::OSMesa;
+  options.renderer.backend = lgh::ContextBackend::EglDevice;
+  options.renderer.gpuIndex = 999;
   RenderQueue& queue = startedQueue(options);
   ASSERT_TRUE(waitUntil([&] { return !fatal().empty(); }));
-  EXPECT_NE(fatal().find("osmesa"), std::string::npos) << fatal();
+  EXPECT_NE(fatal().find("GPU index 999"), std::string::npos) << fatal();
   EXPECT_FALSE(queue.ready());
   EXPECT_EQ(queue.notReadyReason(), "no working GL context: " + fatal());
   EXPECT_FALSE(queue.device());
