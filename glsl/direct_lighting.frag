@@ -10,7 +10,7 @@
 #include "include/lights.glsl"
 #include "include/shadow_rays.glsl"
 
-layout(std430, binding = LGH_SLOT_LIGHTS) readonly buffer Lights { Light lights[]; };
+layout(std430, binding = LGH_BIND_LIGHTS) readonly buffer Lights { Light lights[]; };
 
 uniform int uLightCount;
 uniform vec3 uCameraPosition;

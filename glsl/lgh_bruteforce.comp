@@ -14,7 +14,7 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(std430, binding = LGH_BINDING_POINT_LIGHTS) readonly buffer LghPointLights {
+layout(std430, binding = LGH_BIND_POINT_LIGHTS) readonly buffer LghPointLights {
   PointLight pointLights[];
 };
 layout(rgba32f, binding = LGH_IMAGE_OUTPUT) uniform writeonly image2D uOutput;

@@ -10,7 +10,7 @@
 #include "include/gbuffer.glsl"
 #include "include/lgh_shading.glsl"
 
-layout(binding = 5) uniform sampler2D uDepth;
+layout(binding = LGH_UNIT_PASS_INPUT) uniform sampler2D uDepth;
 
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;

@@ -21,7 +21,7 @@
 
 // The tail reads bits that other groups of its dispatch and its own threads wrote: it goes through
 // this coherent alias; the marking and the steps keep the cached loads.
-layout(std430, binding = 8) coherent buffer LghBitmapsCoherent { uint bitmapCoherent[]; };
+layout(std430, binding = LGH_BIND_BUILD_BITMAPS) coherent buffer LghBitmapsCoherent { uint bitmapCoherent[]; };
 
 layout(local_size_x = LGH_GROUP) in;
 

@@ -12,12 +12,12 @@
 
 layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
 
-layout(std430, binding = LGH_SLOT_LIGHTS) readonly buffer Lights { Light lights[]; };
-layout(std430, binding = LGH_SLOT_SHADOW_SAMPLES) readonly buffer LghSamples {
+layout(std430, binding = LGH_BIND_LIGHTS) readonly buffer Lights { Light lights[]; };
+layout(std430, binding = LGH_BIND_SAMPLES) readonly buffer LghSamples {
   vec4 lghSamples[];  // vec4(position, weight); weight 0: no light
 };
-layout(std430, binding = LGH_SLOT_RAY_ORIGINS) writeonly buffer RayOrigins { vec4 origins[]; };
-layout(std430, binding = LGH_SLOT_RAY_TARGETS) writeonly buffer RayTargets { vec4 targets[]; };
+layout(std430, binding = LGH_BIND_RAY_ORIGINS) writeonly buffer RayOrigins { vec4 origins[]; };
+layout(std430, binding = LGH_BIND_RAY_TARGETS) writeonly buffer RayTargets { vec4 targets[]; };
 
 uniform ivec2 uFrameSize;
 uniform int uLghSampleCount;  // k; 0 when the frame has no LGH samples

@@ -13,7 +13,7 @@ uniform int uRaysPerPixel;
 uniform int uVisibilityWords;  // (uRaysPerPixel + 31) / 32
 
 #ifdef LGH_READ_VISIBILITY
-layout(std430, binding = LGH_SLOT_RAY_VISIBILITY) readonly buffer ShadowVisibility {
+layout(std430, binding = LGH_BIND_RAY_VISIBILITY) readonly buffer ShadowVisibility {
   uint visibility[];
 };
 

@@ -34,8 +34,8 @@ void DirectLightingPass::run(const DirectLightingInputs& inputs, const CameraMat
   glProgramUniform3fv(program, glGetUniformLocation(program, "uCameraPosition"), 1,
                       glm::value_ptr(camera.position));
   glProgramUniform1f(program, glGetUniformLocation(program, "uAmbient"), inputs.ambient);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_LIGHTS, inputs.lights);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_RAY_VISIBILITY, inputs.visibility);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_LIGHTS, inputs.lights);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_VISIBILITY, inputs.visibility);
   bindGBuffer(targets.gbuffer);
   glBindVertexArray(emptyVertexArray_.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -3,6 +3,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/shader_library.hpp"
+#include "gl/slots.hpp"
 #include "passes/direct_lighting_pass.hpp"
 
 namespace lgh {
@@ -32,10 +33,9 @@ void LghBruteForcePass::run(GLuint pointLights, int count, GLuint levels,
   glProgramUniform3fv(program, glGetUniformLocation(program, "uCameraPosition"), 1,
                       glm::value_ptr(camera.position));
   bindGBuffer(frame.gbuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, lgh_binding::kPointLights, pointLights);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, lgh_binding::kLevels, levels);
-  glBindImageTexture(lgh_binding::kImageOutput, output_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                     GL_RGBA32F);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_POINT_LIGHTS, pointLights);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_LEVELS, levels);
+  glBindImageTexture(LGH_IMAGE_OUTPUT, output_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glDispatchCompute(groups(frame.width), groups(frame.height), 1);
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   glUseProgram(0);

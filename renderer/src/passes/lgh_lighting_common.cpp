@@ -167,8 +167,8 @@ void setLightingUniforms(GLuint program, const LghLightingParams& params,
 }
 
 void bindHierarchy(const LghHierarchyBuffers& hierarchy) {
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, lgh_binding::kGridLights, hierarchy.gridLights);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, lgh_binding::kLevels, hierarchy.levels);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_GRID_LIGHTS, hierarchy.gridLights);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_LEVELS, hierarchy.levels);
 }
 
 FloatImage readTextureImage(const gl::Texture& texture, int width, int height) {

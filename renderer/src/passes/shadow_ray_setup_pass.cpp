@@ -31,10 +31,10 @@ void ShadowRaySetupPass::run(const ShadowRaySetupInputs& inputs, const FrameTarg
   glProgramUniform1f(program, location(program, "uSurfaceOffset"), inputs.surfaceOffset);
   glProgramUniform1ui(program, location(program, "uSeed"), inputs.seed);
   bindGBuffer(frame.gbuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_LIGHTS, inputs.lights);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_SHADOW_SAMPLES, inputs.lghSamples);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_RAY_ORIGINS, origins);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_RAY_TARGETS, targets);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_LIGHTS, inputs.lights);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_SAMPLES, inputs.lghSamples);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_ORIGINS, origins);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_TARGETS, targets);
   glDispatchCompute(gl::groups2D(frame.width), gl::groups2D(frame.height), 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
