@@ -2,7 +2,8 @@
 // Brute-force reference of the many-light lighting: every input point light evaluated at every
 // pixel with the shading code of the hierarchy's paths (include/lgh_shading.glsl: same BRDF,
 // falloff and singularity clamp), unshadowed. The error metrics of the hierarchy (relative RMSE,
-// PSNR) are measured against this image. Per-light shadows come with the Vulkan sidecar.
+// PSNR) are measured against this image. The shadowed reference traces a ray per light and pixel
+// (passes/lgh_bruteforce_pass.hpp).
 // Lights stream through shared memory in batches of 64.
 // Inputs: G-buffer (units 0..4), point lights, level table (for h_1 of the clamp).
 // Output: rgba32f radiance, alpha = coverage.

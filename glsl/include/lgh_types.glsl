@@ -259,8 +259,8 @@ uint lghGroupExclusiveScan(uint value, out uint total) {
 }
 
 // ---- last work group -------------------------------------------------------------------------------
-// Fuses a one-group epilogue into a kernel instead of a dependent dispatch (about 10 us each on
-// an H100): every group publishes its result, fences it, and counts itself done; the group that
+// Fuses a one-group epilogue into a kernel instead of a dependent dispatch (each costs a GPU-wide
+// drain and refill): every group publishes its result, fences it, and counts itself done; the group that
 // counts last sees every result (the buffers it reads are coherent) and runs the epilogue.
 // Every group of the dispatch must call this exactly once, in uniform control flow.
 shared bool s_lghLast;
@@ -494,7 +494,7 @@ uvec4 lghGatherWork(uint l) {
   uint vertices = lgh.level[l - 1u].dims.w;
   uint packedBox = box.y | (box.z << 16);
   // One thread per vertex only when there are enough vertices to fill the GPU; otherwise a few
-  // long serial threads set the pace (0.14 ms for 729 vertices on an H100).
+  // long serial threads set the pace.
   if (box.x * rows <= LGH_THREAD_GATHER_MAX && vertices >= LGH_THREAD_GATHER_MIN_VERTICES) {
     return uvec4(0u, lghCeilDiv(vertices, LGH_GROUP), 0u, packedBox);
   }

@@ -33,8 +33,9 @@ void RenderQueue::start(FatalHandler onFatal) {
   onFatal_ = std::move(onFatal);
   thread_ = std::thread([this] { run(); });
   // In a child process (see vulkan_probe_process.hpp), waited for on a thread of its own so that
-  // readiness does not wait for it (~0.3 s on the H100). It starts once the renderer is up: run
-  // beside the GL bring-up it slowed the H100's start-up from ~0.10 s to ~0.18 s.
+  // readiness does not wait for it (a Vulkan instance takes a large part of a second to make). It
+  // starts once the renderer is up: run beside the GL bring-up, it slowed the start-up
+  // (docs/BENCHMARKS.md, "Start-up").
   vulkanProbe_ = std::thread([slot = vulkan_] {
     {
       std::unique_lock lock(slot->mutex);

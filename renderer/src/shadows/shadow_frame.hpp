@@ -1,5 +1,5 @@
-// The shadows of one frame (DESIGN.md "Data flow" steps 8-9; docs/SHADOWS.md), between the LGH
-// lighting (which picked k shadow samples per pixel) and the direct lighting:
+// The shadows of one frame (docs/ARCHITECTURE.md "One frame", steps 4-6; docs/SHADOWS.md), after
+// the LGH lighting (which picked k shadow samples per pixel) and the direct lighting:
 //   inputs:  ShadowSettings, the frame's lights (buffer + count), the LGH's samples (when it
 //            ran), the scene (its acceleration structures are built here on first use), the
 //            G-buffer
