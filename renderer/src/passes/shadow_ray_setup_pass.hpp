@@ -33,9 +33,14 @@ class ShadowRaySetupPass {
   ShadowRaySetupPass();
   void run(const ShadowRaySetupInputs& inputs, const FrameTargets& frame, GLuint origins,
            GLuint targets);
+  // The shadowed brute-force reference's rays: from every pixel to each of `count` point lights
+  // (PointLight SSBO) from `first` on, at their exact positions.
+  void runToPointLights(GLuint pointLights, int first, int count, float surfaceOffset,
+                        const FrameTargets& frame, GLuint origins, GLuint targets);
 
  private:
   gl::Program program_;
+  gl::Program pointLightProgram_ = gl::Program::empty();
 };
 
 // Sets the uniforms of glsl/include/shadow_rays.glsl on `program`.

@@ -61,6 +61,13 @@ class ShadowFrame {
   GLuint filterLgh(int iterations, const CameraMatrices& camera, const FrameTargets& frame,
                    gl::GpuTimer& timer);
 
+  // The shadowed brute-force reference's rays: from every pixel to each of `count` point lights
+  // (PointLight SSBO, count <= vk::kMaxRaysPerPixel) from `first` on. Returns the visibility
+  // buffer (bit r: light first + r), valid until the next trace. Throws like trace() when
+  // shadows are off or cannot be traced.
+  GLuint traceToPointLights(const ShadowSettings& settings, GLuint pointLights, int first,
+                            int count, const CachedScene& scene, const FrameTargets& frame);
+
   // Adds the Vulkan rows (acceleration structures, rays) and the CPU transfer row.
   void collectTimings(FrameReport& report);
 
@@ -69,6 +76,7 @@ class ShadowFrame {
   vk::TracePath choosePath(vk::ShadowTracer& tracer, ShadowTracing requested) const;
   const vk::TraceScene& traceScene(vk::ShadowTracer& tracer, const CachedScene& scene);
   ShadowRayLayout budget(const ShadowFrameInputs& inputs, FrameReport& report) const;
+  RayBatchTransport& transportFor(vk::ShadowTracer& tracer);
   void traceRays(const ShadowFrameInputs& inputs, vk::ShadowTracer& tracer, vk::TracePath path,
                  const CachedScene& scene, const FrameTargets& frame, gl::GpuTimer& timer,
                  FrameReport& report);
