@@ -7,7 +7,9 @@
 //  - both paths set the same bits on a few thousand random rays (open scene: all visible; box
 //    scene: identical words); an empty scene is fully visible;
 //  - interop buffers come with fds and sizes; the buffers only grow, each reallocation a new
-//    generation; GPU times are collected; scenes are built and traced again and again.
+//    generation; GPU times are collected; scenes are built and traced again and again;
+//  - Vulkan failures become lgh::Error(Internal) naming the call and the VkResult (a lost device
+//    says so), and no Vulkan driver at all is Unavailable.
 // The round trips use staging buffers: llvmpipe cannot back GL buffers with lavapipe's memory.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -27,6 +29,7 @@
 #include "scene/scene.hpp"
 #include "test_support.hpp"
 #include "vk/shadow_tracer.hpp"
+#include "vk/vulkan_errors.hpp"
 
 namespace {
 
@@ -156,6 +159,11 @@ class ShadowTracerTest : public ::testing::Test {
     tracer->trace(scene, path, batch.shape, params, false);
     std::memcpy(words.data(), buffers.visibility.mapped, words.size() * sizeof(std::uint32_t));
     return words;
+  }
+
+  // A path the device offers: ray query where it has it.
+  static TracePath anyPath() {
+    return tracer->supports(TracePath::RayQuery) ? TracePath::RayQuery : TracePath::Pipeline;
   }
 
   static inline std::unique_ptr<lgh::GlContext> context;
@@ -415,7 +423,7 @@ TEST_F(ShadowTracerTest, InteropBuffersComeAsFds) {
   EXPECT_GE(buffers.targets.size, 32U * 16U * 33U * 16U);
   EXPECT_GE(buffers.visibility.size, 32U * 16U * 2U * 4U);
   // Tracing into them works too (GL would have written the rays); back to staging afterwards.
-  tracer->trace(*box, TracePath::RayQuery, shape, {}, false);
+  tracer->trace(*box, anyPath(), shape, {}, false);
   const std::uint64_t interop = buffers.generation;
   EXPECT_GT(tracer->rayBuffers(shape, Transport::Staging).generation, interop);
 }
@@ -438,7 +446,7 @@ TEST_F(ShadowTracerTest, SemaphoresNeedExportableSemaphores) {
   // Without them, a trace cannot wait on GL.
   const RayBatchShape shape{.width = 4, .height = 4, .raysPerPixel = 1};
   tracer->rayBuffers(shape, Transport::Staging);
-  EXPECT_THROW(tracer->trace(*box, TracePath::RayQuery, shape, {}, true), lgh::Error);
+  EXPECT_THROW(tracer->trace(*box, anyPath(), shape, {}, true), lgh::Error);
 }
 
 TEST_F(ShadowTracerTest, BadBatchesAreRefused) {
@@ -458,8 +466,7 @@ TEST_F(ShadowTracerTest, BadBatchesAreRefused) {
   });
   tracer->rayBuffers({.width = 4, .height = 4, .raysPerPixel = 1}, Transport::Staging);
   expectCode(lgh::ErrorCode::Invalid, [] {
-    tracer->trace(*box, TracePath::RayQuery, {.width = 1024, .height = 1024, .raysPerPixel = 1}, {},
-                  false);
+    tracer->trace(*box, anyPath(), {.width = 1024, .height = 1024, .raysPerPixel = 1}, {}, false);
   });
 }
 
@@ -469,7 +476,7 @@ TEST_F(ShadowTracerTest, ScenesBuildAgainAndTraceManyTimes) {
     batch.target(p, 0) = {kPointLight, 1.0F};
     batch.target(p, 1) = {0.0F, 1.0F, 0.0F, 0.0F};
   }
-  const auto reference = trace(TracePath::Pipeline, *box, batch);
+  const auto reference = trace(anyPath(), *box, batch);
   for (int build = 0; build < 2; ++build) {
     const auto again = tracer->buildScene(boxScene());
     for (int i = 0; i < 20; ++i) {
@@ -480,6 +487,39 @@ TEST_F(ShadowTracerTest, ScenesBuildAgainAndTraceManyTimes) {
   }
   EXPECT_GT(tracer->collectTimings().traceGpuMs, 0.0);
   EXPECT_EQ(tracer->collectTimings().traceGpuMs, 0.0) << "nothing traced since";
+}
+
+TEST(VulkanErrors, FailedCallsBecomeInternalErrorsNamingTheResult) {
+  try {
+    lgh::vk::translateVulkanErrors(
+        "trace", []() -> int { throw ::vk::DeviceLostError("vk::Queue::submit"); });
+    FAIL() << "no error";
+  } catch (const lgh::Error& error) {
+    EXPECT_EQ(error.code(), lgh::ErrorCode::Internal);
+    EXPECT_NE(error.message().find("trace: vk::Queue::submit failed: VK_ERROR_DEVICE_LOST"),
+              std::string::npos)
+        << error.message();
+    EXPECT_NE(error.message().find("device is lost"), std::string::npos) << error.message();
+  }
+  EXPECT_EQ(lgh::vk::resultName(::vk::Result::eErrorOutOfDeviceMemory),
+            "VK_ERROR_OUT_OF_DEVICE_MEMORY");
+  EXPECT_EQ(lgh::vk::resultName(static_cast<::vk::Result>(-424242)), "VkResult -424242");
+  EXPECT_EQ(lgh::vk::translateVulkanErrors("nothing", [] { return 7; }), 7);
+}
+
+TEST(ShadowTracerWithoutDriver, IsUnavailable) {
+  // An ICD list naming no file: the loader finds no driver (it looks again for each instance).
+  ASSERT_EQ(setenv("VK_ICD_FILENAMES", "/nonexistent/icd.json", 1), 0);
+  ASSERT_EQ(setenv("VK_DRIVER_FILES", "/nonexistent/icd.json", 1), 0);
+  try {
+    ShadowTracer::create(DeviceUuid{});
+    ADD_FAILURE() << "created a tracer without a driver";
+  } catch (const lgh::Error& error) {
+    EXPECT_EQ(error.code(), lgh::ErrorCode::Unavailable) << error.what();
+    EXPECT_NE(error.message().find("driver"), std::string::npos) << error.message();
+  }
+  unsetenv("VK_ICD_FILENAMES");
+  unsetenv("VK_DRIVER_FILES");
 }
 
 }  // namespace

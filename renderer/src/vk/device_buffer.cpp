@@ -78,9 +78,13 @@ std::uint32_t chooseMemoryType(const ::vk::PhysicalDeviceMemoryProperties& memor
 }  // namespace
 
 DeviceBuffer::DeviceBuffer(const VulkanDevice& device, const BufferSpec& spec)
+    : DeviceBuffer(device, createBuffer(device.device(), spec), spec) {}
+
+DeviceBuffer::DeviceBuffer(const VulkanDevice& device, ::vk::raii::Buffer buffer,
+                           const BufferSpec& spec)
     : device_(&device.device()),
-      buffer_(createBuffer(device.device(), spec)),
-      memory_(allocateFor(device, buffer_, spec)),
+      memory_(allocateFor(device, buffer, spec)),
+      buffer_(std::move(buffer)),
       size_(spec.size) {
   buffer_.bindMemory(*memory_, 0);
   allocationSize_ = buffer_.getMemoryRequirements().size;

@@ -42,9 +42,12 @@ class DeviceBuffer {
   int exportFd() const;
 
  private:
+  DeviceBuffer(const VulkanDevice& device, ::vk::raii::Buffer buffer, const BufferSpec& spec);
+
   const ::vk::raii::Device* device_;
-  ::vk::raii::Buffer buffer_;
+  // The memory first, so that the buffer goes before the memory it is bound to.
   ::vk::raii::DeviceMemory memory_;
+  ::vk::raii::Buffer buffer_;
   ::vk::DeviceSize size_;
   ::vk::DeviceSize offset_ = 0;
   ::vk::DeviceSize allocationSize_ = 0;

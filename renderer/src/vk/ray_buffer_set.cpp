@@ -30,11 +30,14 @@ SharedBuffer describe(const DeviceBuffer& buffer, Transport transport) {
 }
 
 DeviceBuffer createRayBuffer(const VulkanDevice& device, std::uint64_t size, Transport transport) {
-  return {device,
-          {.size = size,
-           .usage = ::vk::BufferUsageFlagBits::eStorageBuffer,
-           .memory =
-               transport == Transport::Interop ? MemoryKind::Exportable : MemoryKind::HostVisible}};
+  return {
+      device,
+      {.size = size,
+       // Transfers too: whoever imports them (GL, another Vulkan device) may copy.
+       .usage = ::vk::BufferUsageFlagBits::eStorageBuffer |
+                ::vk::BufferUsageFlagBits::eTransferSrc | ::vk::BufferUsageFlagBits::eTransferDst,
+       .memory =
+           transport == Transport::Interop ? MemoryKind::Exportable : MemoryKind::HostVisible}};
 }
 
 void closeFds(const RayBuffers& buffers) {
@@ -103,11 +106,17 @@ void RayBufferSet::reallocate(const VulkanDevice& device, const RayBatchShape& s
     bytes.targets = std::max(bytes.targets, shared_.targets.size);
     bytes.visibility = std::max(bytes.visibility, shared_.visibility.size);
   }
+  // The old buffers go first (they may be large), and nothing describes them afterwards, even
+  // when the new ones fail.
   buffers_.reset();
+  const std::uint64_t generation = shared_.generation + 1;
+  shared_ = RayBuffers{};
+  shared_.transport = transport;
+  shared_.generation = generation;
   buffers_.emplace(Buffers{createRayBuffer(device, bytes.origins, transport),
                            createRayBuffer(device, bytes.targets, transport),
                            createRayBuffer(device, bytes.visibility, transport)});
-  shared_ = describeAll(*buffers_, transport, shared_.generation + 1);
+  shared_ = describeAll(*buffers_, transport, shared_.generation);
   spdlog::debug("vulkan: ray buffers, generation {}: {} + {} + {} bytes ({})", shared_.generation,
                 bytes.origins, bytes.targets, bytes.visibility,
                 transport == Transport::Interop ? "interop" : "staging");

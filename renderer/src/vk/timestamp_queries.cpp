@@ -14,12 +14,12 @@ TimestampQueries::TimestampQueries(const VulkanDevice& device, std::uint32_t pai
 void TimestampQueries::begin(const ::vk::raii::CommandBuffer& commands, std::uint32_t pair) const {
   if (!pool_) return;
   commands.resetQueryPool(**pool_, 2 * pair, 2);
-  commands.writeTimestamp(::vk::PipelineStageFlagBits::eAllCommands, **pool_, 2 * pair);
+  commands.writeTimestamp(::vk::PipelineStageFlagBits::eTopOfPipe, **pool_, 2 * pair);
 }
 
 void TimestampQueries::end(const ::vk::raii::CommandBuffer& commands, std::uint32_t pair) const {
   if (!pool_) return;
-  commands.writeTimestamp(::vk::PipelineStageFlagBits::eAllCommands, **pool_, 2 * pair + 1);
+  commands.writeTimestamp(::vk::PipelineStageFlagBits::eBottomOfPipe, **pool_, 2 * pair + 1);
 }
 
 double TimestampQueries::elapsedMs(std::uint32_t pair) const {

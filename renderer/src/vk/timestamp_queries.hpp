@@ -15,7 +15,7 @@ class TimestampQueries {
  public:
   TimestampQueries(const VulkanDevice& device, std::uint32_t pairs);
 
-  // Resets pair `pair` and writes its first timestamp once the work before has finished.
+  // Resets pair `pair` and writes its first timestamp as the work after it starts.
   void begin(const ::vk::raii::CommandBuffer& commands, std::uint32_t pair) const;
   // Writes the pair's second timestamp once the work before has finished.
   void end(const ::vk::raii::CommandBuffer& commands, std::uint32_t pair) const;

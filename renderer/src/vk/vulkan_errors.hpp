@@ -18,13 +18,16 @@ std::string resultName(::vk::Result result);
 // The lgh::Error for a failed Vulkan call: `step` names the tracer's step, `call` the call.
 Error vulkanError(std::string_view step, std::string_view call, ::vk::Result result);
 
-// Runs `body`; a vk::SystemError thrown inside comes out as vulkanError(step, ...).
+// Runs `body`; a vk::SystemError thrown inside comes out as vulkanError(step, ...), any other
+// Vulkan-Hpp error as lgh::Error(Internal).
 template <typename Body>
 decltype(auto) translateVulkanErrors(std::string_view step, Body&& body) {
   try {
     return std::forward<Body>(body)();
   } catch (const ::vk::SystemError& error) {
     throw vulkanError(step, error.what(), static_cast<::vk::Result>(error.code().value()));
+  } catch (const ::vk::LogicError& error) {  // Vulkan-Hpp's checks of its own arguments
+    throw Error(ErrorCode::Internal, std::string(step) + ": " + error.what());
   }
 }
 

@@ -112,8 +112,9 @@ class VulkanShadowTracer final : public ShadowTracer {
                            .targets = rayBuffers_.targets(),
                            .visibility = rayBuffers_.visibility()});
       record(slot, recorder, pushConstants(shape, params));
+      // All commands wait for GL, the first timestamp too: the GPU time is the trace's alone.
       submissions_.submit(slot, useSemaphores ? semaphores_->glDone() : ::vk::Semaphore{},
-                          recorder.stage(),
+                          ::vk::PipelineStageFlagBits::eAllCommands,
                           useSemaphores ? semaphores_->vkDone() : ::vk::Semaphore{});
       if (!useSemaphores) submissions_.retire(slot);
     });
