@@ -62,6 +62,7 @@ lgh::Mesh groundQuad() {
 
 lgh::Mesh unitCube() {
   std::vector<glm::vec3> corners;
+  corners.reserve(8);
   for (int i = 0; i < 8; ++i) {
     corners.emplace_back((i & 1) != 0 ? 1 : -1, (i & 2) != 0 ? 1 : -1, (i & 4) != 0 ? 1 : -1);
   }
@@ -209,7 +210,7 @@ TEST_F(ShadowTracerTest, AWrongUuidIsUnavailableAndNamesTheDevicesFound) {
     FAIL() << "created a tracer on a device that does not exist";
   } catch (const lgh::Error& error) {
     EXPECT_EQ(error.code(), lgh::ErrorCode::Unavailable);
-    const std::string message = error.message();
+    const std::string& message = error.message();
     EXPECT_NE(message.find("abababab-abab-abab-abab-abababababab"), std::string::npos) << message;
     EXPECT_NE(message.find("llvmpipe"), std::string::npos) << message;
     const std::string glDevice =

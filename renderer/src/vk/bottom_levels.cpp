@@ -114,6 +114,8 @@ void recordBuilds(const ::vk::raii::CommandBuffer& commands, const std::vector<M
                   ::vk::DeviceAddress scratch) {
   std::vector<::vk::AccelerationStructureBuildGeometryInfoKHR> infos;
   std::vector<const ::vk::AccelerationStructureBuildRangeInfoKHR*> ranges;
+  infos.reserve(builds.size());
+  ranges.reserve(builds.size());
   for (const MeshBuild& build : builds) {
     infos.push_back(build.info(scratch));
     ranges.push_back(build.ranges.data());
@@ -125,6 +127,7 @@ void recordBuilds(const ::vk::raii::CommandBuffer& commands, const std::vector<M
 void recordSizeQuery(const ::vk::raii::CommandBuffer& commands,
                      const std::vector<MeshBuild>& builds, const ::vk::raii::QueryPool& sizes) {
   std::vector<::vk::AccelerationStructureKHR> handles;
+  handles.reserve(builds.size());
   for (const MeshBuild& build : builds) handles.push_back(build.uncompacted->handle());
   commands.resetQueryPool(*sizes, 0, static_cast<std::uint32_t>(handles.size()));
   memoryBarrier(commands, ::vk::PipelineStageFlagBits::eAccelerationStructureBuildKHR,
