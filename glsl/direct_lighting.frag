@@ -8,7 +8,7 @@
 #define LGH_READ_VISIBILITY
 #include "include/gbuffer.glsl"
 #include "include/lights.glsl"
-#include "include/shadow_rays.glsl"
+#include "include/ray_batch.glsl"
 
 layout(std430, binding = LGH_BIND_LIGHTS) readonly buffer Lights { Light lights[]; };
 

@@ -13,7 +13,7 @@
 #include "include/lgh_shading.glsl"
 #ifdef LGH_SHADOWED
 #define LGH_READ_VISIBILITY
-#include "include/shadow_rays.glsl"
+#include "include/ray_batch.glsl"
 uniform uint uChunkFirst;
 #endif
 

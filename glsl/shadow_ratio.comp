@@ -6,7 +6,7 @@
 // Inputs: visibility bits, the LGH samples. Output: r16f ratio image.
 
 #define LGH_READ_VISIBILITY
-#include "include/shadow_rays.glsl"
+#include "include/ray_batch.glsl"
 
 layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
 

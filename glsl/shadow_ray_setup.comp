@@ -10,7 +10,7 @@
 #include "include/gbuffer.glsl"
 #include "include/lights.glsl"
 #include "include/reservoir.glsl"
-#include "include/shadow_rays.glsl"
+#include "include/ray_batch.glsl"
 #ifdef LGH_POINT_LIGHT_RAYS
 #include "include/lgh_types.glsl"
 layout(std430, binding = LGH_BIND_POINT_LIGHTS) readonly buffer PointLights {

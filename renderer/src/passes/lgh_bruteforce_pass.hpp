@@ -18,7 +18,7 @@
 namespace lgh {
 
 // Traces a ray from every pixel to each of `count` point lights from `first` on (PointLight SSBO
-// `pointLights`; count <= 64) and returns the visibility buffer (include/shadow_rays.glsl layout:
+// `pointLights`; count <= 64) and returns the visibility buffer (include/ray_batch.glsl layout:
 // bit r of a pixel's words for light first + r).
 using PointLightVisibility = std::function<GLuint(GLuint pointLights, int first, int count)>;
 

@@ -2,7 +2,7 @@
 //   inputs:  G-buffer position and normal, the frame's lights buffer (the first `shadowedLights`
 //            get `lightSamples` rays each), the LGH's k shadow samples per pixel (when it ran)
 //   outputs: the ray batch's origins and targets (layout: vk/shadow_tracer.hpp)
-//   shaders: glsl/shadow_ray_setup.comp (include/shadow_rays.glsl)
+//   shaders: glsl/shadow_ray_setup.comp (include/ray_batch.glsl)
 #pragma once
 
 #include <cstdint>
@@ -43,7 +43,7 @@ class ShadowRaySetupPass {
   gl::Program pointLightProgram_ = gl::Program::empty();
 };
 
-// Sets the uniforms of glsl/include/shadow_rays.glsl on `program`.
+// Sets the uniforms of glsl/include/ray_batch.glsl on `program`.
 void setShadowRayUniforms(GLuint program, const ShadowRayLayout& layout);
 
 }  // namespace lgh
