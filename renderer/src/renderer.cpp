@@ -37,6 +37,10 @@ const RendererOptions& Renderer::options() const { return impl_->options; }
 
 Renderer::CacheStats Renderer::sceneCacheStats() const { return impl_->cache.stats(); }
 
+ShadowInfo Renderer::shadowInfo() const {
+  return impl_->shadowDevice.info(impl_->pipeline.shadowTransport());
+}
+
 RenderResult Renderer::render(const RenderRequest& request) {
   const Stopwatch total;
   FrameReport report;

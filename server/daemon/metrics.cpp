@@ -115,6 +115,11 @@ void Metrics::recordRenderTimes(const lgh::TimingTable& timings, double queueSec
   }
 }
 
+void Metrics::recordShadows(const std::string& shadows) {
+  std::lock_guard lock(mutex_);
+  ++shadows_[fmt::format("shadows=\"{}\"", escapeLabel(shadows))];
+}
+
 void Metrics::recordThumbnail(const std::string& status) {
   std::lock_guard lock(mutex_);
   ++thumbnails_[fmt::format("status=\"{}\"", status)];
@@ -143,6 +148,10 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
         static_cast<double>(gauges.sceneCacheBytes));
   gauge(out, "lghd_scene_cache_budget_bytes", "GPU memory budget of the scene cache.",
         static_cast<double>(gauges.sceneCacheBudgetBytes));
+  gauge(out, "lghd_shadow_tracer_ready",
+        "1 when the Vulkan shadow tracer is up, 0 when this machine cannot trace shadows (see "
+        "/v1/info), -1 until a frame has asked for shadows.",
+        gauges.shadowTracer);
 
   std::lock_guard lock(mutex_);
   header(out, "lghd_http_requests_total", "counter",
@@ -166,6 +175,10 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
   queueWaitSeconds_.write(out, "lghd_queue_wait_seconds", "");
   header(out, "lghd_thumbnails_total", "counter", "Thumbnails rendered in batches, by status.");
   counterLines(out, "lghd_thumbnails_total", thumbnails_);
+  header(out, "lghd_render_shadows_total", "counter",
+         "Renders by how their shadows were traced: ray-query, pipeline, none (the machine cannot "
+         "trace: unshadowed with a warning), off (the request asked for none).");
+  counterLines(out, "lghd_render_shadows_total", shadows_);
   return out;
 }
 

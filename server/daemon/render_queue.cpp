@@ -160,6 +160,9 @@ RuntimeGauges RenderQueue::gauges() const {
   gauges.sceneCacheEntries = cacheStats_.entries;
   gauges.sceneCacheBytes = cacheStats_.bytes;
   gauges.sceneCacheBudgetBytes = options_.renderer.sceneCacheBytes;
+  gauges.shadowTracer = shadowInfo_.status == "ready"         ? 1
+                        : shadowInfo_.status == "unavailable" ? 0
+                                                              : -1;
   return gauges;
 }
 
@@ -243,7 +246,7 @@ bool RenderQueue::bringUpRenderer() {
     if (onFatal_) onFatal_(error.what());
     return false;
   }
-  publishCacheStats();
+  publishRendererState();
   std::lock_guard lock(mutex_);
   device_ = renderer_->device();
   state_ = State::Ready;
@@ -305,9 +308,12 @@ void RenderQueue::renderTicket(const RenderJob& job, RenderTicket& ticket) {
   if (options_.testRenderDelay.count() > 0) std::this_thread::sleep_for(options_.testRenderDelay);
   try {
     lgh::RenderResult result = renderer_->render(ticket.request());
-    publishCacheStats();
+    publishRendererState();
     metrics_.recordRenderTimes(result.timings, secondsBetween(job.enqueued, start),
                                result.sceneCacheHit);
+    if (const auto shadows = result.decisions.find("shadows"); shadows != result.decisions.end()) {
+      metrics_.recordShadows(shadows->second);
+    }
     if (ticket.complete(std::move(result))) {
       metrics_.recordRender("ok");
     } else {
@@ -329,10 +335,17 @@ void RenderQueue::renderTicket(const RenderJob& job, RenderTicket& ticket) {
   averageRenderSeconds_ = 0.8 * averageRenderSeconds_ + 0.2 * seconds;
 }
 
-void RenderQueue::publishCacheStats() {
+void RenderQueue::publishRendererState() {
   const lgh::Renderer::CacheStats stats = renderer_->sceneCacheStats();
+  lgh::ShadowInfo shadows = renderer_->shadowInfo();
   std::lock_guard lock(mutex_);
   cacheStats_ = stats;
+  shadowInfo_ = std::move(shadows);
+}
+
+lgh::ShadowInfo RenderQueue::shadows() const {
+  std::lock_guard lock(mutex_);
+  return shadowInfo_;
 }
 
 }  // namespace lghd

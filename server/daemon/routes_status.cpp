@@ -37,13 +37,9 @@ json cacheJson(const RuntimeGauges& gauges) {
           {"budget_bytes", gauges.sceneCacheBudgetBytes}};
 }
 
-// What the Vulkan loader and drivers offer (null until the render thread has probed them). The
-// renderer has no Vulkan shadow-ray sidecar: say so plainly rather than omit the member.
+// What the Vulkan loader and drivers offer (null until the probe has answered).
 json vulkanJson(const std::optional<lgh::VulkanInfo>& vulkan) {
-  json result = vulkan ? vulkan->toJson() : json{{"available", nullptr}};
-  result["sidecar_path"] = nullptr;
-  result["note"] = "this build has no Vulkan shadow-ray sidecar; shadows are not traced";
-  return result;
+  return vulkan ? vulkan->toJson() : json{{"available", nullptr}};
 }
 
 json infoJson(const DaemonContext& context) {
@@ -56,6 +52,7 @@ json infoJson(const DaemonContext& context) {
           {"status", reason.empty() ? "ready" : reason},
           {"device", device ? device->toJson() : json()},
           {"vulkan", vulkanJson(context.queue.vulkan())},
+          {"shadows", context.queue.shadows().toJson()},
           {"limits", limitsJson(context.config)},
           {"queue",
            {{"depth", gauges.queueDepth},

@@ -11,6 +11,7 @@
 #include "lgh/renderer_options.hpp"
 #include "lgh/request.hpp"
 #include "lgh/scene_cache_stats.hpp"
+#include "lgh/shadow_info.hpp"
 
 namespace lgh {
 
@@ -30,6 +31,9 @@ class Renderer {
 
   using CacheStats = SceneCacheStats;
   CacheStats sceneCacheStats() const;
+
+  // The shadow side: its Vulkan device and paths, or why there is none.
+  ShadowInfo shadowInfo() const;
 
   struct Impl;
 

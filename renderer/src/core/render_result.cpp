@@ -1,4 +1,5 @@
 #include "lgh/render_result.hpp"
+#include "lgh/shadow_info.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -10,6 +11,23 @@ nlohmann::json DeviceInfo::toJson() const {
           {"gl_renderer", glRenderer},          {"gl_version", glVersion},
           {"glsl_version", glslVersion},        {"software_renderer", softwareRenderer},
           {"image_backend", imageBackend}};
+}
+
+nlohmann::json ShadowInfo::toJson() const {
+  nlohmann::json json = {{"status", status}};
+  if (!reason.empty()) json["reason"] = reason;
+  if (status == "ready") {
+    json["device"] = deviceName;
+    json["driver"] = driverName;
+    json["api_version"] = apiVersion;
+    json["ray_query"] = rayQuery;
+    json["ray_tracing_pipeline"] = rayTracingPipeline;
+    json["external_memory"] = externalMemory;
+    json["external_semaphores"] = externalSemaphores;
+    json["transport"] = transport.empty() ? nlohmann::json() : nlohmann::json(transport);
+    json["process"] = "in-process";
+  }
+  return json;
 }
 
 ImageMetadata RenderResult::metadata() const {

@@ -54,6 +54,26 @@ vk::ShadowTracer* ShadowDevice::tracer() {
   return tracer_.get();
 }
 
+ShadowInfo ShadowDevice::info(const std::string& transport) const {
+  ShadowInfo info;
+  if (!tracer_) {
+    info.status = tried_ ? "unavailable" : "pending";
+    info.reason = reason_;
+    return info;
+  }
+  const vk::TracerInfo& tracer = tracer_->info();
+  info.status = "ready";
+  info.deviceName = tracer.deviceName;
+  info.driverName = tracer.driverName;
+  info.apiVersion = tracer.apiVersion;
+  info.rayQuery = tracer.rayQuery;
+  info.rayTracingPipeline = tracer.rayTracingPipeline;
+  info.externalMemory = tracer.externalMemoryFd;
+  info.externalSemaphores = tracer.externalSemaphoreFd;
+  info.transport = transport;
+  return info;
+}
+
 void ShadowDevice::reset(const std::string& why) {
   spdlog::error("shadows: the Vulkan tracer is reset after a failure: {}", why);
   tracer_.reset();

@@ -68,6 +68,9 @@ class ShadowFrame {
   GLuint traceToPointLights(const ShadowSettings& settings, GLuint pointLights, int first,
                             int count, const CachedScene& scene, const FrameTargets& frame);
 
+  // How rays reach Vulkan ("interop", "interop-finish", "staging"); "" before the first batch.
+  std::string transportName() const { return transport_ ? transport_->name() : std::string(); }
+
   // Adds the Vulkan rows (acceleration structures, rays) and the CPU transfer row.
   void collectTimings(FrameReport& report);
 
