@@ -2,6 +2,7 @@
 //   lgh-bench construct --vpls 1000,10000,100000,1000000 [--method gather|scatter|both]
 //                       [--levels L|auto] [--iterations K] [--warmup W] [--json] [--gpu N]
 //   lgh-bench render ...  (see server/bench/render.cpp)
+//   lgh-bench shadows ... (see server/bench/shadows.cpp)
 // Subcommands register themselves from server/bench/<name>.cpp (see bench/bench_command.hpp).
 #include <iostream>
 #include <vector>
@@ -17,7 +18,8 @@ int main(int argc, char** argv) try {
   lgh::cli::addContextFlags(app, context);
   app.require_subcommand(1);
   std::vector<lgh::bench::Command> commands{lgh::bench::addConstructCommand(app, context),
-                                            lgh::bench::addRenderCommand(app, context)};
+                                            lgh::bench::addRenderCommand(app, context),
+                                            lgh::bench::addShadowsCommand(app, context)};
   CLI11_PARSE(app, argc, argv);
   lgh::cli::setUpLogging(context.logLevel);
   for (const auto& command : commands) {

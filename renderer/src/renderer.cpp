@@ -6,7 +6,9 @@
 #include "core/stopwatch.hpp"
 #include "frame_pipeline.hpp"
 #include "frame_report.hpp"
+#include "gl/gl_api.hpp"
 #include "gl/gpu_timer.hpp"
+#include "lgh/error.hpp"
 #include "scene/scene_cache.hpp"
 #include "shadows/shadow_device.hpp"
 
@@ -30,7 +32,15 @@ struct Renderer::Impl {
 };
 
 Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {}
-Renderer::~Renderer() = default;
+Renderer::~Renderer() {
+  // The frame's and the cache's GL objects are deleted in this context, whichever is current.
+  try {
+    if (impl_ && gl::currentApi() != &impl_->context->api()) impl_->context->makeCurrent();
+  } catch (const Error& error) {
+    spdlog::error("renderer: its GL context could not be made current to free it: {}",
+                  error.what());
+  }
+}
 
 const DeviceInfo& Renderer::device() const { return impl_->device; }
 const RendererOptions& Renderer::options() const { return impl_->options; }
@@ -43,6 +53,8 @@ ShadowInfo Renderer::shadowInfo() const {
 
 RenderResult Renderer::render(const RenderRequest& request) {
   const Stopwatch total;
+  // Another Renderer on this thread may have made its own context current since.
+  if (gl::currentApi() != &impl_->context->api()) impl_->context->makeCurrent();
   FrameReport report;
   SceneCache::Lookup lookup = impl_->cache.get(request.scene);
   report.decide("scene_cache", lookup.hit ? "hit" : "miss");

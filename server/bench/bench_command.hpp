@@ -45,5 +45,8 @@ inline std::string countLabel(int count) {
 Command addConstructCommand(CLI::App& app, const cli::ContextFlags& context);
 // `lgh-bench render`: full LGH frames (server/bench/render.cpp).
 Command addRenderCommand(CLI::App& app, const cli::ContextFlags& context);
+// `lgh-bench shadows`: shadowed frames and acceleration-structure builds
+// (server/bench/shadows.cpp).
+Command addShadowsCommand(CLI::App& app, const cli::ContextFlags& context);
 
 }  // namespace lgh::bench

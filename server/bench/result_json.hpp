@@ -8,6 +8,7 @@
 
 #include "lgh/bench/construct_benchmark.hpp"
 #include "lgh/bench/render_benchmark.hpp"
+#include "lgh/bench/shadow_benchmark.hpp"
 #include "lgh/bench/statistics.hpp"
 
 namespace lgh::bench {
@@ -34,5 +35,14 @@ void to_json(nlohmann::json& j, const RenderRun& run);
 // {"benchmark": "lgh-render", "device", "settings", "references": [RenderReference],
 //  "runs": [RenderRun]}
 void to_json(nlohmann::json& j, const RenderBenchmarkResult& result);
+
+// {"path", "shadow_samples", "rays_per_pixel", "transport", "passes": [TimingStats], "rays_ms",
+//  "filter_ms", "rays_plus_filter_ms", "frame_gpu_ms", "rays_per_second"}
+void to_json(nlohmann::json& j, const ShadowRun& run);
+// {"scene", "triangles", "build": TimingStats}
+void to_json(nlohmann::json& j, const ShadowBuild& build);
+// {"benchmark": "lgh-shadows", "device", "shadows", "settings", "runs": [ShadowRun],
+//  "builds": [ShadowBuild]}
+void to_json(nlohmann::json& j, const ShadowBenchmarkResult& result);
 
 }  // namespace lgh::bench

@@ -105,6 +105,21 @@ TEST(ContextPaths, EachContextOwnsItsFunctionTable) {
   EXPECT_EQ(lgh::gl::currentApi(), nullptr);
 }
 
+// Two renderers on one thread, on the same EGL display: each makes its own context current when
+// it renders or is destroyed, and destroying one leaves the display to the other.
+TEST(ContextPaths, RenderersShareAThreadAndADisplay) {
+  const auto request = lgh::parseRenderRequest(R"({"output": {"width": 24, "height": 16}})");
+  lgh::Renderer first(lgh::test::rendererOptions());
+  const lgh::FloatImage reference = first.render(request).image;
+  for (int round = 0; round < 3; ++round) {
+    auto second = std::make_unique<lgh::Renderer>(lgh::test::rendererOptions());
+    EXPECT_TRUE(second->render(request).image.rgba == reference.rgba);
+    EXPECT_TRUE(first.render(request).image.rgba == reference.rgba);
+    second.reset();  // while `first`'s context is the current one
+    EXPECT_TRUE(first.render(request).image.rgba == reference.rgba) << "round " << round;
+  }
+}
+
 TEST(ContextPathsDeathTest, GlCallWithoutContextNamesTheCall) {
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   EXPECT_DEATH(glFinish(), "glFinish called on a thread with no current GL context");

@@ -4,6 +4,7 @@
 #include <glad/egl.h>
 
 #include <cstring>
+#include <map>
 #include <mutex>
 #include <vector>
 
@@ -74,6 +75,34 @@ void loadEglClient() {
   }
 }
 
+// An EGL display is one per device and process: every context on it shares its initialization,
+// and eglTerminate would end it for all of them. Counted here, terminated with its last context.
+class DisplayUsers {
+ public:
+  static void acquire(EGLDisplay display) {
+    std::lock_guard lock(mutex());
+    ++counts()[display];
+  }
+  // True when `display` has no other user left (the caller terminates it).
+  static bool release(EGLDisplay display) {
+    std::lock_guard lock(mutex());
+    auto it = counts().find(display);
+    if (it == counts().end() || --it->second > 0) return false;
+    counts().erase(it);
+    return true;
+  }
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static std::map<EGLDisplay, int>& counts() {
+    static std::map<EGLDisplay, int> c;
+    return c;
+  }
+};
+
 GLADapiproc eglProcAddress(void* /*userData*/, const char* name) {
   return reinterpret_cast<GLADapiproc>(eglGetProcAddress(name));
 }
@@ -86,6 +115,7 @@ class EglContext final : public GlContext {
     EGLint major = 0;
     EGLint minor = 0;
     if (eglInitialize(display_, &major, &minor) != EGL_TRUE) failEgl("eglInitialize");
+    DisplayUsers::acquire(display_);
     initialized_ = true;
     if (gladLoaderLoadEGL(display_) == 0) failEgl("loading EGL functions for the display");
     if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) failEgl("eglBindAPI(EGL_OPENGL_API)");
@@ -100,7 +130,7 @@ class EglContext final : public GlContext {
       eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
       eglDestroyContext(display_, context_);
     }
-    if (initialized_) eglTerminate(display_);
+    if (initialized_ && DisplayUsers::release(display_)) eglTerminate(display_);
   }
 
   EglContext(const EglContext&) = delete;
