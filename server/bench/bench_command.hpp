@@ -48,5 +48,7 @@ Command addRenderCommand(CLI::App& app, const cli::ContextFlags& context);
 // `lgh-bench shadows`: shadowed frames and acceleration-structure builds
 // (server/bench/shadows.cpp).
 Command addShadowsCommand(CLI::App& app, const cli::ContextFlags& context);
+// `lgh-bench handoff`: the GL -> Vulkan hand-off in and out of process (server/bench/handoff.cpp).
+Command addHandoffCommand(CLI::App& app, const cli::ContextFlags& context);
 
 }  // namespace lgh::bench

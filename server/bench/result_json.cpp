@@ -154,4 +154,17 @@ void to_json(nlohmann::json& j, const ShadowBenchmarkResult& result) {
        {"builds", result.builds}};
 }
 
+void to_json(nlohmann::json& j, const HandoffBenchmarkResult& result) {
+  j = {{"benchmark", "lgh-handoff"},
+       {"device", result.device.toJson()},
+       {"shadows", result.shadows.toJson()},
+       {"transport", result.transport},
+       {"settings",
+        {{"iterations", result.options.iterations},
+         {"warmup_iterations", result.options.warmupIterations}}},
+       {"in_process_batch", result.inProcessBatch},
+       {"socket_round_trip", result.socketRoundTrip},
+       {"fd_passing", result.fdPassing}};
+}
+
 }  // namespace lgh::bench

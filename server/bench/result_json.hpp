@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lgh/bench/construct_benchmark.hpp"
+#include "lgh/bench/handoff_benchmark.hpp"
 #include "lgh/bench/render_benchmark.hpp"
 #include "lgh/bench/shadow_benchmark.hpp"
 #include "lgh/bench/statistics.hpp"
@@ -44,5 +45,9 @@ void to_json(nlohmann::json& j, const ShadowBuild& build);
 // {"benchmark": "lgh-shadows", "device", "shadows", "settings", "runs": [ShadowRun],
 //  "builds": [ShadowBuild]}
 void to_json(nlohmann::json& j, const ShadowBenchmarkResult& result);
+
+// {"benchmark": "lgh-handoff", "device", "shadows", "transport", "settings",
+//  "in_process_batch", "socket_round_trip", "fd_passing": TimingStats}
+void to_json(nlohmann::json& j, const HandoffBenchmarkResult& result);
 
 }  // namespace lgh::bench
