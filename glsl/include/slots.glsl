@@ -15,6 +15,7 @@
 #define LGH_SLOT_SHADOW_RATIO_IN 5    // sampler: the shadow ratio a pass reads
 #define LGH_SLOT_SHADOW_RATIO_OUT 0   // image: the shadow ratio a pass writes
 #define LGH_SLOT_COMPOSITE_RATIO 3    // sampler unit of the filtered ratio in composite.frag
+#define LGH_SLOT_GBUFFER_LAYERS 6     // sampler: the G-buffer's material layers (include/gbuffer.glsl)
 
 // ---- work groups --------------------------------------------------------------------------------
 #define LGH_GROUP_2D 8                // 8 x 8 invocations for per-pixel compute passes

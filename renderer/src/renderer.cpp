@@ -7,6 +7,7 @@
 #include "frame_pipeline.hpp"
 #include "frame_report.hpp"
 #include "gl/gpu_timer.hpp"
+#include "scene/gltf/gltf_loader.hpp"
 #include "scene/scene_cache.hpp"
 #include "shadows/shadow_device.hpp"
 
@@ -40,7 +41,11 @@ Renderer::CacheStats Renderer::sceneCacheStats() const { return impl_->cache.sta
 RenderResult Renderer::render(const RenderRequest& request) {
   const Stopwatch total;
   FrameReport report;
-  SceneCache::Lookup lookup = impl_->cache.get(request.scene);
+  SceneLoadOptions loadOptions;
+  loadOptions.animation = request.sceneOptions.animation;
+  loadOptions.materialVariant = request.sceneOptions.materialVariant;
+  loadOptions.ignoreUnsupportedExtensions = request.settings.ignoreUnsupportedExtensions;
+  SceneCache::Lookup lookup = impl_->cache.get(request.scene, loadOptions);
   report.decide("scene_cache", lookup.hit ? "hit" : "miss");
   report.timings.add("scene load", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.loadMs);
   report.timings.add("upload", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.uploadMs);

@@ -326,7 +326,8 @@ TEST(RequestErrors, UnknownPropertyListsTheAllowedOnes) {
 
 TEST(RequestErrors, SceneWithTwoKeysSaysWhichAreAllowed) {
   const Error error = parseError(std::string(R"({"scene": {"demo": true, "asset": "a.glb"}})"));
-  EXPECT_EQ(error.message(), "must have exactly one property (asset, demo or glb_base64), got 2");
+  EXPECT_EQ(error.message(),
+            "must have exactly one of the properties asset, demo or glb_base64, got 2");
 }
 
 TEST(RequestErrors, NonFiniteNumbersInJsonBuiltInCode) {
