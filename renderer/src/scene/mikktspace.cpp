@@ -250,16 +250,18 @@ class MikkTSpace {
     std::unordered_map<int, std::size_t> firstCorner;
     for (std::size_t t = 0; t < infos_.size(); ++t) {
       if (infos_[t].degenerate) continue;
-      for (int i = 0; i < 3; ++i)
+      for (int i = 0; i < 3; ++i) {
         firstCorner.emplace(infos_[t].vertex[static_cast<std::size_t>(i)],
                             t * 3 + static_cast<std::size_t>(i));
+      }
     }
     for (std::size_t t = 0; t < infos_.size(); ++t) {
       if (!infos_[t].degenerate) continue;
       for (int i = 0; i < 3; ++i) {
         const auto it = firstCorner.find(infos_[t].vertex[static_cast<std::size_t>(i)]);
-        if (it != firstCorner.end())
+        if (it != firstCorner.end()) {
           corners[t * 3 + static_cast<std::size_t>(i)] = corners[it->second];
+        }
       }
     }
   }

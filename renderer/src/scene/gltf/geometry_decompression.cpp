@@ -207,8 +207,9 @@ void decodeMeshoptView(tinygltf::Model& model, int viewIndex, const tinygltf::Va
                                               static_cast<std::size_t>(length))
                  : -1;
   } else if (mode == "TRIANGLES" || mode == "INDICES") {
-    if (stride != 2 && stride != 4)
+    if (stride != 2 && stride != 4) {
       invalid(ctx, fmt::format("{}: index byteStride must be 2 or 4", owner));
+    }
     if (mode == "TRIANGLES" && count % 3 != 0) {
       invalid(ctx, fmt::format("{}: TRIANGLES count {} is not a multiple of 3", owner, count));
     }

@@ -224,8 +224,9 @@ std::vector<std::uint8_t> replaceGlbJson(const std::vector<std::uint8_t>& bytes,
   out.insert(out.end(), padded.begin(), padded.end());
   out.insert(out.end(), bytes.begin() + 20 + oldLength, bytes.end());
   const auto total = static_cast<std::uint32_t>(out.size());
-  for (int b = 0; b < 4; ++b)
+  for (int b = 0; b < 4; ++b) {
     out[8 + static_cast<std::size_t>(b)] = static_cast<std::uint8_t>(total >> (8 * b));
+  }
   return out;
 }
 

@@ -75,10 +75,7 @@ std::size_t elementCountFor(std::size_t indexCount, int mode) {
       return indexCount >= 3 ? indexCount - 2 : 0;
     case TINYGLTF_MODE_LINE:
       return indexCount / 2;
-    case TINYGLTF_MODE_LINE_STRIP:
-    case TINYGLTF_MODE_LINE_LOOP:
-      return indexCount;
-    default:
+    default:  // line strips and loops (at most one segment per index), points
       return indexCount;
   }
 }

@@ -286,8 +286,9 @@ class SceneBuilder {
       glm::mat4 ibm(1.0F);
       if (!inverseBind.empty()) ibm = glm::make_mat4(inverseBind.data() + j * 16);
       const glm::mat4 matrix = worldMatrix(joint) * ibm;
-      if (!isFinite(matrix))
+      if (!isFinite(matrix)) {
         invalid(ctx_, fmt::format("{}: joint {} has a non-finite matrix", owner, j));
+      }
       matrices.push_back(matrix);
     }
     if (matrices.empty()) invalid(ctx_, fmt::format("{} has no joints", owner));
