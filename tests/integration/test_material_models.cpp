@@ -20,6 +20,7 @@
 
 #include "context/gl_context.hpp"
 #include "frame_pipeline.hpp"
+#include "gl/shader_library.hpp"
 #include "lgh/base64.hpp"
 #include "lgh/testing/image_metrics.hpp"
 #include "scene/camera.hpp"
@@ -259,6 +260,15 @@ TEST_F(MaterialModels, LayersChangeWhatTheSurfaceShows) {
   EXPECT_NEAR(unlit.r, kUnlitColor.r, 1e-3F);
   EXPECT_NEAR(unlit.g, kUnlitColor.g, 1e-3F);
   EXPECT_NEAR(unlit.b, kUnlitColor.b, 1e-3F);
+}
+
+// The shadow passes read the G-buffer too (readSurface), but need the Vulkan tracer to run: at
+// least they must compile against the layered G-buffer here.
+TEST_F(MaterialModels, ShadowPassShadersCompileWithTheLayeredGBuffer) {
+  for (const char* shader : {"shadow_ray_setup.comp", "shadow_atrous.comp"}) {
+    SCOPED_TRACE(shader);
+    EXPECT_NE(lgh::gl::buildComputeProgram(shader).id(), 0U);
+  }
 }
 
 }  // namespace
