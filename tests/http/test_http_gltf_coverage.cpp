@@ -41,8 +41,9 @@ constexpr int kSize = 64;
 // Pixels whose alpha is not 0: with a transparent background, what the asset covers.
 int coveredPixels(const lgh::image_io::Decoded& image) {
   int covered = 0;
-  for (std::size_t i = 3; i < image.pixels8.size(); i += 4)
+  for (std::size_t i = 3; i < image.pixels8.size(); i += 4) {
     covered += image.pixels8[i] != 0 ? 1 : 0;
+  }
   return covered;
 }
 

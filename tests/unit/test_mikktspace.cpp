@@ -97,8 +97,9 @@ void expectReference(const lgh::Primitive& primitive) {
   ASSERT_EQ(primitive.indices.size(), kReference.size());
   for (std::size_t c = 0; c < kReference.size(); ++c) {
     const glm::vec4 t = primitive.vertices.at(primitive.indices[c]).tangent;
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < 4; ++k) {
       EXPECT_NEAR(t[k], kReference[c][k], 2e-5F) << "corner " << c << " component " << k;
+    }
   }
 }
 
