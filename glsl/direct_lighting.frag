@@ -28,7 +28,7 @@ void main() {
   }
   vec3 toViewer = normalize(uCameraPosition - s.position);
   vec3 radiance = texelFetch(gEmissive, pixel, 0).rgb;
-  radiance += uAmbient * s.baseColor * s.occlusion;
+  radiance += uAmbient * ambientResponse(s);
   uint pixelIndex = uint(pixel.y) * uint(uFrameWidth) + uint(pixel.x);
   for (int i = 0; i < uLightCount; ++i) {
     vec3 toLight;

@@ -9,6 +9,7 @@
 #include "gl/gl_api.hpp"
 #include "gl/gpu_timer.hpp"
 #include "lgh/error.hpp"
+#include "scene/gltf/gltf_loader.hpp"
 #include "scene/scene_cache.hpp"
 #include "shadows/shadow_device.hpp"
 
@@ -56,7 +57,11 @@ RenderResult Renderer::render(const RenderRequest& request) {
   // Another Renderer on this thread may have made its own context current since.
   if (gl::currentApi() != &impl_->context->api()) impl_->context->makeCurrent();
   FrameReport report;
-  SceneCache::Lookup lookup = impl_->cache.get(request.scene);
+  SceneLoadOptions loadOptions;
+  loadOptions.animation = request.sceneOptions.animation;
+  loadOptions.materialVariant = request.sceneOptions.materialVariant;
+  loadOptions.ignoreUnsupportedExtensions = request.settings.ignoreUnsupportedExtensions;
+  SceneCache::Lookup lookup = impl_->cache.get(request.scene, loadOptions);
   report.decide("scene_cache", lookup.hit ? "hit" : "miss");
   report.timings.add("scene load", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.loadMs);
   report.timings.add("upload", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.uploadMs);

@@ -192,6 +192,22 @@ const BadCase kBadCases[] = {
     {"vec3_too_short", R"({"camera": {"type": "look_at", "target": [0, 1]}})", kBad,
      "/camera/target"},
     {"scene_string", R"({"scene": "demo"})", kBad, "/scene"},
+    {"scene_animation_only", R"({"scene": {"animation": {"index": 0}}})", kBad, "/scene"},
+    {"animation_index_missing", R"({"scene": {"asset": "a.glb", "animation": {"time": 1}}})", kBad,
+     "/scene/animation/index"},
+    {"animation_time_negative",
+     R"({"scene": {"asset": "a.glb", "animation": {"index": 0, "time": -1}}})", kInvalid,
+     "/scene/animation/time"},
+    {"material_variant_empty", R"({"scene": {"asset": "a.glb", "material_variant": ""}})", kBad,
+     "/scene/material_variant"},
+    {"point_size_zero", R"({"settings": {"primitives": {"point_size": 0}}})", kInvalid,
+     "/settings/primitives/point_size"},
+    {"point_shape_unknown", R"({"settings": {"primitives": {"point_shape": "star"}}})", kBad,
+     "/settings/primitives/point_shape"},
+    {"line_width_too_wide", R"({"settings": {"primitives": {"line_width": 100}}})", kInvalid,
+     "/settings/primitives/line_width"},
+    {"ignore_extensions_string", R"({"settings": {"ignore_unsupported_extensions": "yes"}})", kBad,
+     "/settings/ignore_unsupported_extensions"},
     {"width_float_out_of_range", R"({"output": {"width": -1e19}})", kBad, "/output/width"},
     // Unknown property.
     {"unknown_top_level", R"({"foo": 1})", kBad, "/foo"},
@@ -326,7 +342,8 @@ TEST(RequestErrors, UnknownPropertyListsTheAllowedOnes) {
 
 TEST(RequestErrors, SceneWithTwoKeysSaysWhichAreAllowed) {
   const Error error = parseError(std::string(R"({"scene": {"demo": true, "asset": "a.glb"}})"));
-  EXPECT_EQ(error.message(), "must have exactly one property (asset, demo or glb_base64), got 2");
+  EXPECT_EQ(error.message(),
+            "must have exactly one of the properties asset, demo or glb_base64, got 2");
 }
 
 TEST(RequestErrors, NonFiniteNumbersInJsonBuiltInCode) {
@@ -399,6 +416,29 @@ TEST(RequestLimitsTest, DefaultLimitsAllowTheSchemaMaximum) {
 }
 
 // --- Accepted requests ------------------------------------------------------------------------
+
+TEST(RequestParse, SceneOptionsAndPrimitiveSettings) {
+  const RenderRequest request = parseText(R"({
+    "scene": {"asset": "simple_skin/simple_skin.gltf", "animation": {"index": 1, "time": 2.5},
+              "material_variant": "red"},
+    "settings": {"ignore_unsupported_extensions": true,
+                 "primitives": {"point_size": 8, "point_shape": "square", "line_width": 3}}})");
+  EXPECT_EQ(request.scene.kind, SceneSource::Kind::AssetPath);
+  ASSERT_TRUE(request.sceneOptions.animation.has_value());
+  EXPECT_EQ(request.sceneOptions.animation->index, 1);
+  EXPECT_FLOAT_EQ(request.sceneOptions.animation->time, 2.5F);
+  EXPECT_EQ(request.sceneOptions.materialVariant, "red");
+  EXPECT_TRUE(request.settings.ignoreUnsupportedExtensions);
+  EXPECT_FLOAT_EQ(request.settings.primitives.pointSize, 8.0F);
+  EXPECT_EQ(request.settings.primitives.pointShape, lgh::PointShape::Square);
+  EXPECT_FLOAT_EQ(request.settings.primitives.lineWidth, 3.0F);
+  // Without them: the bind pose, the default variant, refusal of unknown required extensions.
+  const RenderRequest plain = parseText(R"({"scene": {"asset": "a.glb"}})");
+  EXPECT_FALSE(plain.sceneOptions.animation.has_value());
+  EXPECT_TRUE(plain.sceneOptions.materialVariant.empty());
+  EXPECT_FALSE(plain.settings.ignoreUnsupportedExtensions);
+  EXPECT_EQ(plain.settings.primitives.pointShape, lgh::PointShape::Disk);
+}
 
 TEST(RequestParse, EmptyObjectIsAllDefaults) {
   EXPECT_EQ(describe(parseText("{}")), describe(RenderRequest{}));

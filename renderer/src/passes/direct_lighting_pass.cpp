@@ -14,6 +14,7 @@ void bindGBuffer(const GBufferTargets& gbuffer) {
                                        gbuffer.albedo.id(), gbuffer.material.id(),
                                        gbuffer.emissive.id()};
   glBindTextures(0, static_cast<GLsizei>(textures.size()), textures.data());
+  glBindTextureUnit(LGH_UNIT_GBUFFER_LAYERS, gbuffer.layers.id());
 }
 
 DirectLightingPass::DirectLightingPass()

@@ -31,7 +31,27 @@ SceneCache::SceneCache(const RendererOptions& options) : options_(options) {
   maxAnisotropy_ = anisotropy;
 }
 
-std::string SceneCache::keyFor(const SceneSource& source) const {
+namespace {
+
+// The options' part of a cache key ("" for the defaults, so default keys stay as they were).
+std::string optionsKey(const SceneLoadOptions& options) {
+  std::string key;
+  if (options.animation) {
+    key += fmt::format("|animation={}@{}", options.animation->index, options.animation->time);
+  }
+  if (!options.materialVariant.empty()) key += "|variant=" + options.materialVariant;
+  if (options.ignoreUnsupportedExtensions) key += "|ignore-unsupported";
+  return key;
+}
+
+}  // namespace
+
+std::string SceneCache::keyFor(const SceneSource& source, const SceneLoadOptions& options) const {
+  const std::string base = sourceKey(source);
+  return base.empty() || source.kind == SceneSource::Kind::Demo ? base : base + optionsKey(options);
+}
+
+std::string SceneCache::sourceKey(const SceneSource& source) const {
   switch (source.kind) {
     case SceneSource::Kind::Demo:
       return "demo";
@@ -59,7 +79,7 @@ std::string SceneCache::keyFor(const SceneSource& source) const {
   return {};
 }
 
-Scene SceneCache::load(const SceneSource& source) const {
+Scene SceneCache::load(const SceneSource& source, const SceneLoadOptions& options) const {
   SceneLoadLimits limits;
   limits.maxTriangles = options_.maxTriangles;
   limits.maxTextureSize = options_.maxTextureSize;
@@ -68,18 +88,19 @@ Scene SceneCache::load(const SceneSource& source) const {
       return makeDemoScene();
     case SceneSource::Kind::InlineGlb:
       return loadGlbBytes(source.glbBytes,
-                          source.displayName.empty() ? "inline.glb" : source.displayName, limits);
+                          source.displayName.empty() ? "inline.glb" : source.displayName, limits,
+                          options);
     case SceneSource::Kind::UploadedGltf:
-      return loadGltfFromMemory(source.gltfFileName, source.uploadedFiles, limits);
+      return loadGltfFromMemory(source.gltfFileName, source.uploadedFiles, limits, options);
     case SceneSource::Kind::AssetPath:
-      return loadGltfFile(options_.assetRoot, source.assetPath, limits);
+      return loadGltfFile(options_.assetRoot, source.assetPath, limits, options);
   }
   return makeDemoScene();
 }
 
-SceneCache::Lookup SceneCache::get(const SceneSource& source) {
+SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOptions& options) {
   Lookup lookup;
-  const std::string key = keyFor(source);
+  const std::string key = keyFor(source, options);
   for (auto it = slots_.begin(); it != slots_.end(); ++it) {
     if (it->key != key) continue;
     slots_.splice(slots_.begin(), slots_, it);
@@ -92,7 +113,7 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source) {
   ++misses_;
   const Stopwatch loadTimer;
   auto entry = std::make_shared<CachedScene>();
-  entry->scene = load(source);
+  entry->scene = load(source, options);
   lookup.loadMs = loadTimer.elapsedMs();
   const Stopwatch uploadTimer;
   entry->gpu = std::make_unique<GpuScene>(entry->scene, maxAnisotropy_);

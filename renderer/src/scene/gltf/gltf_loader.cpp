@@ -7,8 +7,12 @@
 //   side_files          buffer and image URIs, through the asset sandbox (tinygltf's file access)
 //   image_decoding      texture images: size limit from the header, then our image I/O
 //   accessor_reader     bounds-checked accessor reads
-//   primitive_converter glTF primitives -> triangle lists with normals and tangents
-//   material_converter  materials, textures, samplers
+//   geometry_decompression  KHR_draco_mesh_compression, EXT_meshopt_compression -> plain buffers
+//   primitive_converter glTF primitives -> triangle, line and point lists with normals, tangents
+//   deformation         morph targets and skins applied to a primitive
+//   animation_pose      an animation sampled at one time
+//   material_converter  materials, textures, samplers (material_extensions: KHR_materials_*,
+//                       texture_transform: KHR_texture_transform)
 //   scene_builder       the node hierarchy -> instances, cameras, lights
 // load_context holds what a load carries through them; tinygltf.hpp configures tinygltf.
 #include "scene/gltf/gltf_loader.hpp"
@@ -28,6 +32,7 @@
 
 #include "lgh/error.hpp"
 #include "scene/asset_path.hpp"
+#include "scene/gltf/geometry_decompression.hpp"
 #include "scene/gltf/image_decoding.hpp"
 #include "scene/gltf/load_context.hpp"
 #include "scene/gltf/scene_builder.hpp"
@@ -42,9 +47,25 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-// Extensions this loader implements; a REQUIRED extension outside this set fails the load.
-const std::set<std::string, std::less<>> kSupportedExtensions = {
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization"};
+// Extensions this loader implements; a REQUIRED extension outside this set fails the load, unless
+// the request says to ignore it. KHR_texture_basisu is not here: no maintained transcoder is a
+// Debian package, so a texture that only has a KTX2 image is refused (or, optional, falls back to
+// the texture's plain source).
+const std::set<std::string, std::less<>> kSupportedExtensions = {"KHR_lights_punctual",
+                                                                 "KHR_materials_emissive_strength",
+                                                                 "KHR_mesh_quantization",
+                                                                 "KHR_texture_transform",
+                                                                 "KHR_materials_unlit",
+                                                                 "KHR_materials_clearcoat",
+                                                                 "KHR_materials_sheen",
+                                                                 "KHR_materials_specular",
+                                                                 "KHR_materials_ior",
+                                                                 "KHR_materials_transmission",
+                                                                 "KHR_materials_volume",
+                                                                 "KHR_materials_variants",
+                                                                 "KHR_draco_mesh_compression",
+                                                                 "EXT_meshopt_compression",
+                                                                 "EXT_texture_webp"};
 
 constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
 constexpr std::uint32_t kGlbJsonChunk = 0x4E4F534A;
@@ -109,19 +130,108 @@ void checkExtensions(const json& document, LoadContext& ctx) {
       unsupported.push_back(name.get<std::string>());
     }
   }
-  if (!unsupported.empty()) {
-    invalid(ctx, fmt::format("the asset requires unsupported glTF extension(s): {}",
+  if (!unsupported.empty() && !ctx.options.ignoreUnsupportedExtensions) {
+    invalid(ctx, fmt::format("the asset requires unsupported glTF extension(s): {} (set "
+                             "settings.ignore_unsupported_extensions to render it anyway)",
                              fmt::join(unsupported, ", ")));
   }
+  for (const std::string& name : unsupported) {
+    ctx.warnOnce(
+        fmt::format("required glTF extension {} is not supported; rendered without it "
+                    "(settings.ignore_unsupported_extensions)",
+                    name));
+  }
   for (const json& name : document.value("extensionsUsed", json::array())) {
-    if (kSupportedExtensions.count(name.get<std::string>()) == 0) {
+    const auto& text = name.get_ref<const std::string&>();
+    if (kSupportedExtensions.count(text) == 0 &&
+        std::find(unsupported.begin(), unsupported.end(), text) == unsupported.end()) {
       ctx.warnOnce(fmt::format("optional glTF extension {} is not supported; ignored",
                                name.get<std::string>()));
     }
   }
 }
 
-void precheckJson(std::string_view text, LoadContext& ctx) {
+// EXT_meshopt_compression's fallback buffers carry no data (no uri, or past the GLB's BIN chunk),
+// which tinygltf refuses. They are only read through decoded bufferViews, so give each one a single
+// byte of data for tinygltf's sake; true when the document changed.
+bool stubMeshoptFallbackBuffers(json& document, bool binary) {
+  if (!document.contains("buffers") || !document["buffers"].is_array()) return false;
+  bool changed = false;
+  json& buffers = document["buffers"];
+  for (std::size_t i = 0; i < buffers.size(); ++i) {
+    json& buffer = buffers[i];
+    const json* extension = nullptr;
+    for (const char* name : {"EXT_meshopt_compression", "KHR_meshopt_compression"}) {
+      if (buffer.contains("extensions") && buffer["extensions"].is_object() &&
+          buffer["extensions"].contains(name)) {
+        extension = &buffer["extensions"][name];
+      }
+    }
+    if (extension == nullptr || !extension->is_object() || !extension->value("fallback", false) ||
+        buffer.contains("uri")) {
+      continue;
+    }
+    if (binary && i == 0) continue;  // the BIN chunk itself
+    buffer["uri"] = "data:application/octet-stream;base64,AA==";
+    buffer["byteLength"] = 1;
+    changed = true;
+  }
+  return changed;
+}
+
+// KHR_draco_mesh_compression's index accessors have no bufferView (the indices are in the Draco
+// stream), which tinygltf refuses. Point each at a one-byte stub view for tinygltf's sake; the
+// Draco stage (geometry_decompression) points it at the decoded indices. True when changed.
+bool stubDracoIndexViews(json& document) {
+  if (!document.contains("meshes") || !document.contains("accessors") ||
+      !document.contains("buffers") || document["buffers"].empty()) {
+    return false;
+  }
+  json& accessors = document["accessors"];
+  std::optional<std::size_t> stub;
+  for (json& mesh : document["meshes"]) {
+    if (!mesh.contains("primitives")) continue;
+    for (json& primitive : mesh["primitives"]) {
+      const bool draco = primitive.contains("extensions") &&
+                         primitive["extensions"].contains("KHR_draco_mesh_compression");
+      if (!draco || !primitive.contains("indices") || !primitive["indices"].is_number_unsigned()) {
+        continue;
+      }
+      const auto index = primitive["indices"].get<std::size_t>();
+      if (index >= accessors.size() || accessors[index].contains("bufferView")) continue;
+      if (!stub) {
+        document["bufferViews"].push_back({{"buffer", 0}, {"byteLength", 1}});
+        stub = document["bufferViews"].size() - 1;
+      }
+      accessors[index]["bufferView"] = *stub;
+    }
+  }
+  return stub.has_value();
+}
+
+// A GLB with its JSON chunk replaced by `text` (padded with spaces), other chunks unchanged.
+std::vector<std::uint8_t> replaceGlbJson(const std::vector<std::uint8_t>& bytes,
+                                         const std::string& text) {
+  const std::uint32_t oldLength = readLittleEndian32(bytes.data() + 12);
+  std::string padded = text;
+  while (padded.size() % 4 != 0) padded.push_back(' ');
+  std::vector<std::uint8_t> out(bytes.begin(), bytes.begin() + 12);
+  auto put32 = [&out](std::uint32_t value) {
+    for (int b = 0; b < 4; ++b) out.push_back(static_cast<std::uint8_t>(value >> (8 * b)));
+  };
+  put32(static_cast<std::uint32_t>(padded.size()));
+  put32(kGlbJsonChunk);
+  out.insert(out.end(), padded.begin(), padded.end());
+  out.insert(out.end(), bytes.begin() + 20 + oldLength, bytes.end());
+  const auto total = static_cast<std::uint32_t>(out.size());
+  for (int b = 0; b < 4; ++b) {
+    out[8 + static_cast<std::size_t>(b)] = static_cast<std::uint8_t>(total >> (8 * b));
+  }
+  return out;
+}
+
+// The JSON checks; returns replacement JSON text when the document had to be patched for tinygltf.
+std::optional<std::string> precheckJson(std::string_view text, LoadContext& ctx, bool binary) {
   json document;
   try {
     document = json::parse(text.begin(), text.end());
@@ -135,6 +245,10 @@ void precheckJson(std::string_view text, LoadContext& ctx) {
   }
   checkExtensions(document, ctx);
   checkImageBufferViews(document, ctx);
+  const bool meshopt = stubMeshoptFallbackBuffers(document, binary);
+  const bool draco = stubDracoIndexViews(document);
+  if (meshopt || draco) return document.dump();
+  return std::nullopt;
 }
 
 [[noreturn]] void throwParseFailure(const LoadContext& ctx, const std::string& tinygltfError) {
@@ -155,13 +269,18 @@ void addParserWarnings(LoadContext& ctx, const std::string& text) {
   }
 }
 
-tinygltf::Model parseModel(const std::vector<std::uint8_t>& bytes, LoadContext& ctx) {
-  const bool binary = isGlb(bytes);
+tinygltf::Model parseModel(const std::vector<std::uint8_t>& original, LoadContext& ctx) {
+  const bool binary = isGlb(original);
+  std::vector<std::uint8_t> patched;
   if (!binary) {
-    precheckJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), ctx);
-  } else if (const auto text = glbJson(bytes)) {
-    precheckJson(*text, ctx);
+    const auto text = precheckJson(
+        std::string_view(reinterpret_cast<const char*>(original.data()), original.size()), ctx,
+        false);
+    if (text) patched.assign(text->begin(), text->end());
+  } else if (const auto json = glbJson(original)) {
+    if (const auto text = precheckJson(*json, ctx, true)) patched = replaceGlbJson(original, *text);
   }
+  const std::vector<std::uint8_t>& bytes = patched.empty() ? original : patched;
   tinygltf::TinyGLTF parser;
   parser.SetFsCallbacks(sandboxedFileCallbacks(ctx));
   parser.SetImageLoader(&loadImageCallback, &ctx);
@@ -186,7 +305,8 @@ Scene loadModel(const std::vector<std::uint8_t>& bytes, LoadContext& ctx) {
                               std::min<std::size_t>(ctx.limits.maxFileBytes, UINT_MAX)));
   }
   if (bytes.empty()) invalid(ctx, "the asset is empty");
-  const tinygltf::Model model = parseModel(bytes, ctx);
+  tinygltf::Model model = parseModel(bytes, ctx);
+  decompressGeometry(model, ctx);
   return buildScene(model, ctx);
 }
 
@@ -224,11 +344,12 @@ std::vector<std::uint8_t> readAssetFile(const fs::path& path, const LoadContext&
 }  // namespace gltf
 
 Scene loadGltfFile(const std::filesystem::path& assetRoot, const std::string& relativePath,
-                   const SceneLoadLimits& limits) {
+                   const SceneLoadLimits& limits, const SceneLoadOptions& options) {
   return gltf::guarded(relativePath, [&] {
     gltf::LoadContext ctx;
     ctx.displayName = relativePath;
     ctx.limits = limits;
+    ctx.options = options;
     ctx.sideFiles = gltf::SideFiles::Directory;
     ctx.root = assetRoot;
     const std::filesystem::path path = resolveAssetPath(assetRoot, relativePath, relativePath);
@@ -238,11 +359,12 @@ Scene loadGltfFile(const std::filesystem::path& assetRoot, const std::string& re
 }
 
 Scene loadGlbBytes(const std::vector<std::uint8_t>& bytes, const std::string& displayName,
-                   const SceneLoadLimits& limits) {
+                   const SceneLoadLimits& limits, const SceneLoadOptions& options) {
   return gltf::guarded(displayName, [&] {
     gltf::LoadContext ctx;
     ctx.displayName = displayName;
     ctx.limits = limits;
+    ctx.options = options;
     ctx.sideFiles = gltf::SideFiles::None;
     return gltf::loadModel(bytes, ctx);
   });
@@ -250,11 +372,12 @@ Scene loadGlbBytes(const std::vector<std::uint8_t>& bytes, const std::string& di
 
 Scene loadGltfFromMemory(const std::string& gltfName,
                          const std::map<std::string, std::vector<std::uint8_t>>& files,
-                         const SceneLoadLimits& limits) {
+                         const SceneLoadLimits& limits, const SceneLoadOptions& options) {
   return gltf::guarded(gltfName, [&] {
     gltf::LoadContext ctx;
     ctx.displayName = gltfName;
     ctx.limits = limits;
+    ctx.options = options;
     ctx.sideFiles = gltf::SideFiles::Memory;
     for (const auto& [name, bytes] : files) {
       // Uploaded names that could not be referenced legally are simply never found.
