@@ -54,6 +54,16 @@ ShadowInfo Renderer::shadowInfo() const {
 
 RenderResult Renderer::render(const RenderRequest& request) {
   const Stopwatch total;
+  RenderResult result = renderFrame(request);
+  const Stopwatch encode;
+  result.encoded = result.encode(request.output);
+  result.mimeType = mimeType(request.output.format);
+  result.timings.add("encode", TimingRow::Clock::Cpu, encode.elapsedMs());
+  result.timings.add("total", TimingRow::Clock::Cpu, total.elapsedMs());
+  return result;
+}
+
+RenderResult Renderer::renderFrame(const RenderRequest& request) {
   // Another Renderer on this thread may have made its own context current since.
   if (gl::currentApi() != &impl_->context->api()) impl_->context->makeCurrent();
   FrameReport report;
@@ -81,12 +91,6 @@ RenderResult Renderer::render(const RenderRequest& request) {
   result.timings = std::move(report.timings);
   result.decisions = std::move(report.decisions);
   result.warnings = std::move(report.warnings);
-
-  const Stopwatch encode;
-  result.encoded = result.encode(request.output);
-  result.mimeType = mimeType(request.output.format);
-  result.timings.add("encode", TimingRow::Clock::Cpu, encode.elapsedMs());
-  result.timings.add("total", TimingRow::Clock::Cpu, total.elapsedMs());
   return result;
 }
 

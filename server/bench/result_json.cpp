@@ -147,6 +147,7 @@ void to_json(nlohmann::json& j, const ShadowBenchmarkResult& result) {
          {"shadow_samples", o.shadowSamples},
          {"filter_iterations", o.filterIterations},
          {"warmup_iterations", o.warmupIterations},
+         {"warmup_seconds", o.warmupSeconds},
          {"timed_iterations", o.timedIterations},
          {"build_triangles", o.buildTriangles},
          {"build_iterations", o.buildIterations}}},

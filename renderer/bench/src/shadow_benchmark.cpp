@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "core/stopwatch.hpp"
 #include "lgh/error.hpp"
 #include "lgh/renderer.hpp"
 
@@ -37,17 +38,22 @@ RenderRequest frameRequest(const ShadowBenchmarkOptions& o, ShadowTracing path, 
   return parsed;
 }
 
+// Frames back to back, unencoded: a CPU pause between frames (an EXR encode takes 0.2 s) lets
+// the GPU lower its clocks, and the next frame's first passes would be timed at those clocks.
 ShadowRun runFrames(Renderer& renderer, const ShadowBenchmarkOptions& o, ShadowTracing path,
                     int k) {
   const RenderRequest request = frameRequest(o, path, k);
-  for (int i = 0; i < o.warmupIterations; ++i) renderer.render(request);
+  const Stopwatch warmup;
+  for (int i = 0; i < o.warmupIterations || warmup.elapsedMs() < 1000.0 * o.warmupSeconds; ++i) {
+    renderer.renderFrame(request);
+  }
   TimingSamples samples;
   std::vector<double> gpuTotals;
   ShadowRun run;
   run.path = path;
   run.shadowSamples = k;
   for (int i = 0; i < o.timedIterations; ++i) {
-    const RenderResult result = renderer.render(request);
+    const RenderResult result = renderer.renderFrame(request);
     for (const TimingRow& row : result.timings.rows) samples.add(row.name, row.milliseconds);
     gpuTotals.push_back(result.timings.gpuTotal());
     run.raysPerPixel = std::stoi(result.decisions.at("shadow_rays"));
@@ -134,7 +140,7 @@ std::vector<std::uint8_t> gridGlb(int triangles, int salt) {
 TimingStats buildTimes(Renderer& renderer, const std::vector<RenderRequest>& requests) {
   TimingSamples samples;
   for (const RenderRequest& request : requests) {
-    const RenderResult result = renderer.render(request);
+    const RenderResult result = renderer.renderFrame(request);
     const double ms = result.timings.get("shadow as build");
     if (ms < 0.0) throw Error(ErrorCode::Internal, "a scene's first frame built no structures");
     samples.add("shadow as build", ms);
@@ -151,7 +157,7 @@ std::vector<ShadowBuild> runBuilds(const ShadowBenchmarkOptions& o, Renderer& re
       Renderer fresh(o.renderer);
       RenderRequest request = parseRenderRequest(
           R"({"settings": {"shadows": "on"}, "output": {"width": 64, "height": 64}})");
-      samples.add("shadow as build", fresh.render(request).timings.get("shadow as build"));
+      samples.add("shadow as build", fresh.renderFrame(request).timings.get("shadow as build"));
     }
     builds.push_back({"demo", 0, samples.stats("shadow as build")});
   }
@@ -189,7 +195,7 @@ ShadowBenchmarkResult runShadowBenchmark(const ShadowBenchmarkOptions& options) 
   result.device = renderer.device();
   result.options = options;
   // The first shadowed frame makes the tracer (or says why it cannot).
-  renderer.render(parseRenderRequest(
+  renderer.renderFrame(parseRenderRequest(
       R"({"settings": {"shadows": "on"}, "output": {"width": 16, "height": 16}})"));
   result.shadows = renderer.shadowInfo();
   for (ShadowTracing path : pathsToRun(options, result.shadows)) {

@@ -25,6 +25,9 @@ class Renderer {
 
   // Throws lgh::Error: NotFound/Invalid/TooLarge for bad scenes, Internal for GL failures.
   RenderResult render(const RenderRequest& request);
+  // The same frame without its encoding (`encoded` stays empty, no "encode" row): for callers
+  // that encode elsewhere (RenderResult::encode is safe on any thread) or not at all.
+  RenderResult renderFrame(const RenderRequest& request);
 
   const DeviceInfo& device() const;
   const RendererOptions& options() const;

@@ -127,8 +127,8 @@ void ShadowFrame::traceRays(const ShadowFrameInputs& inputs, vk::ShadowTracer& t
   const float offset = surfaceOffset(scene.scene);
   {
     gl::ScopedGpuPass pass(timer, "shadow ray setup");
-    setup_.run({layout_, inputs.lights, inputs.lghSamples, offset, inputs.seed ^ kDirectSeedSalt},
-               frame, buffers_.origins, buffers_.targets);
+    setup().run({layout_, inputs.lights, inputs.lghSamples, offset, inputs.seed ^ kDirectSeedSalt},
+                frame, buffers_.origins, buffers_.targets);
   }
   vk::TraceParams params;
   params.tMin = offset;
@@ -136,6 +136,11 @@ void ShadowFrame::traceRays(const ShadowFrameInputs& inputs, vk::ShadowTracer& t
   transferMs_ = transport.trace(accel, path, shape, params);
   traced_ = true;
   report.decide("shadow_transport", transport.name());
+}
+
+ShadowRaySetupPass& ShadowFrame::setup() {
+  if (!setup_) setup_.emplace();
+  return *setup_;
 }
 
 RayBatchTransport& ShadowFrame::transportFor(vk::ShadowTracer& tracer) {
@@ -165,8 +170,8 @@ GLuint ShadowFrame::traceToPointLights(const ShadowSettings& settings, GLuint po
                                   static_cast<std::uint32_t>(count)};
     const RayBatchTransport::GlBuffers buffers = transport.prepare(shape);
     const float offset = surfaceOffset(scene.scene);
-    setup_.runToPointLights(pointLights, first, count, offset, frame, buffers.origins,
-                            buffers.targets);
+    setup().runToPointLights(pointLights, first, count, offset, frame, buffers.origins,
+                             buffers.targets);
     vk::TraceParams params;
     params.tMin = offset;
     params.endEpsilon = kEndEpsilon;

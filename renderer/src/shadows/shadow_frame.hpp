@@ -87,7 +87,9 @@ class ShadowFrame {
   ShadowDevice* device_;
   std::unique_ptr<RayBatchTransport> transport_;
   std::uint64_t transportEpoch_ = 0;  // the ShadowDevice epoch transport_ belongs to
-  ShadowRaySetupPass setup_;
+  ShadowRaySetupPass& setup();        // compiled by the first shadowed frame, not at start-up
+
+  std::optional<ShadowRaySetupPass> setup_;
   std::optional<ShadowFilterPass> filter_;
   ShadowRayLayout layout_;
   RayBatchTransport::GlBuffers buffers_;
