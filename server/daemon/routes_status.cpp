@@ -3,6 +3,7 @@
 #include <httplib.h>
 
 #include "http_util.hpp"
+#include "process_metrics.hpp"
 #include "routes.hpp"
 #include "version.hpp"
 
@@ -83,7 +84,8 @@ void addStatusRoutes(httplib::Server& server, DaemonContext& context) {
                sendJson(response, 200, infoJson(context));
              }));
   server.Get("/metrics", [&context](const httplib::Request&, httplib::Response& response) {
-    response.set_content(context.metrics.exposition(context.queue.gauges()),
+    response.set_content(context.metrics.exposition(context.queue.gauges()) +
+                             context.jobs.exposition() + processMetricsExposition(),
                          "text/plain; version=0.0.4; charset=utf-8");
   });
 }
