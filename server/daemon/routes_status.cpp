@@ -22,6 +22,14 @@ json limitsJson(const DaemonConfig& config) {
           {"deadline_ms", config.deadline.count()}};
 }
 
+json jobLimitsJson(const JobLimits& jobs) {
+  return {{"max_jobs", jobs.maxJobs},
+          {"memory_budget_bytes", jobs.memoryBytes},
+          {"ttl_seconds", jobs.ttl.count()},
+          {"max_batch", jobs.maxBatch},
+          {"deadline_ms", jobs.renderDeadline.count()}};
+}
+
 json buildJson() {
   return {{"version", kVersion},
           {"build_type", kBuildType},
@@ -63,7 +71,9 @@ json infoJson(const DaemonContext& context) {
             {"capacity", gauges.queueCapacity},
             {"rendering", gauges.rendering}}},
           {"scene_cache", cacheJson(gauges)},
-          {"auth", !context.config.authToken.empty()}};
+          {"jobs", jobLimitsJson(context.config.jobs)},
+          {"auth", !context.config.authToken.empty()},
+          {"cors_origins", context.config.corsOrigins}};
 }
 
 }  // namespace
