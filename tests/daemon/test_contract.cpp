@@ -32,11 +32,18 @@ namespace {
 
 using json = nlohmann::json;
 
-const std::vector<std::string> kProtoFiles = {
-    "openapi.json",                 "camera.schema.json",          "light.schema.json",
-    "render-request.schema.json",   "render-response.schema.json", "render-settings.schema.json",
-    "scene.schema.json",            "timings.schema.json",         "thumbnails-request.schema.json",
-    "job-request.schema.json",      "job-status.schema.json",      "benchmark-result.schema.json"};
+const std::vector<std::string> kProtoFiles = {"openapi.json",
+                                              "camera.schema.json",
+                                              "light.schema.json",
+                                              "render-request.schema.json",
+                                              "render-response.schema.json",
+                                              "render-settings.schema.json",
+                                              "scene.schema.json",
+                                              "timings.schema.json",
+                                              "thumbnails-request.schema.json",
+                                              "job-request.schema.json",
+                                              "job-status.schema.json",
+                                              "benchmark-result.schema.json"};
 
 json openapi() { return json::parse(lgh::protoDocument("openapi.json")); }
 
@@ -184,9 +191,9 @@ TEST(Contract, WhatLghRenderAllowsIsTheRenderersDefaultLimits) {
       << vpls;
   const json scene = json::parse(lgh::protoDocument("scene.schema.json"));
   const std::string glb = scene.at("properties").at("glb_base64").at("description");
-  EXPECT_NE(glb.find("lgh-render allows " + std::to_string(limits.maxInlineGlbBytes >> 20) +
-                     " MiB"),
-            std::string::npos)
+  EXPECT_NE(
+      glb.find("lgh-render allows " + std::to_string(limits.maxInlineGlbBytes >> 20) + " MiB"),
+      std::string::npos)
       << glb;
 }
 
@@ -228,10 +235,11 @@ TEST(Contract, JobSchemaDefaultsAreTheParsers) {
   Metrics metrics;
   const auto implicit =
       parseJobWork({{"kind", "benchmark"}}, config, config.requestLimits(), metrics);
-  const auto explicitDefaults = parseJobWork({{"kind", "benchmark"},
-                                              {"warmup", benchmark.at("warmup").at("default")},
-                                              {"iterations", benchmark.at("iterations").at("default")}},
-                                             config, config.requestLimits(), metrics);
+  const auto explicitDefaults =
+      parseJobWork({{"kind", "benchmark"},
+                    {"warmup", benchmark.at("warmup").at("default")},
+                    {"iterations", benchmark.at("iterations").at("default")}},
+                   config, config.requestLimits(), metrics);
   EXPECT_EQ(implicit->size(), explicitDefaults->size());
   EXPECT_EQ(implicit->size(), 11U);  // warmup 1 + iterations 10
 }
@@ -248,9 +256,12 @@ TEST(Contract, ErrorCodesAreTheDaemons) {
     codes.insert(std::string(lgh::errorCodeName(code)));
   }
   const json document = openapi();
-  const json& documented =
-      document.at("components").at("schemas").at("ErrorDetail").at("properties").at("code").at(
-          "enum");
+  const json& documented = document.at("components")
+                               .at("schemas")
+                               .at("ErrorDetail")
+                               .at("properties")
+                               .at("code")
+                               .at("enum");
   EXPECT_EQ(documented.get<std::set<std::string>>(), codes);
   const std::string daemonDoc = readSource("docs/DAEMON.md");
   for (const std::string& code : codes) {
@@ -272,8 +283,8 @@ std::set<std::string> familiesIn(const std::string& exposition) {
 std::set<std::string> familiesNamedIn(const std::string& text) {
   const std::regex name(R"(\b((?:lghd|process)_[a-z_]+[a-z]))");
   std::set<std::string> names;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), name);
-       it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), name); it != std::sregex_iterator();
+       ++it) {
     names.insert((*it)[1]);
   }
   return names;

@@ -110,8 +110,7 @@ TEST_F(ConventionsTest, UnacceptableIs406BeforeAnyRender) {
             std::string::npos)
       << error.dump();
   const json exr = {{"output", {{"width", 16}, {"height", 8}, {"format", "exr"}}}};
-  expectError(postJson(*http, "/v1/render", exr, {{"Accept", "image/png"}}), 406,
-              "not_acceptable");
+  expectError(postJson(*http, "/v1/render", exr, {{"Accept", "image/png"}}), 406, "not_acceptable");
   expectError(postJson(*http, "/v1/render", kSmall, {{"Accept", "image/png;q=0"}}), 406,
               "not_acceptable");
   expectError(http->Get("/v1/info", {{"Accept", "image/png"}}), 406, "not_acceptable");
@@ -152,10 +151,9 @@ TEST_F(ConventionsTest, MetricsPassPromtoolAndCarryProcessMetrics) {
       << "promtool is missing: scripts/install-deps installs it (Debian package prometheus)";
   EXPECT_EQ(runPromtool(text), "rc=0\n") << text;
 
-  const double now = static_cast<double>(
-      std::chrono::duration_cast<std::chrono::seconds>(
-          std::chrono::system_clock::now().time_since_epoch())
-          .count());
+  const double now = static_cast<double>(std::chrono::duration_cast<std::chrono::seconds>(
+                                             std::chrono::system_clock::now().time_since_epoch())
+                                             .count());
   const double start = metricValue(text, "process_start_time_seconds");
   EXPECT_LE(start, now + 1);
   EXPECT_GT(start, now - 3600);
@@ -165,8 +163,9 @@ TEST_F(ConventionsTest, MetricsPassPromtoolAndCarryProcessMetrics) {
   EXPECT_GT(metricValue(text, "process_open_fds"), 2);
   EXPECT_GT(metricValue(text, "process_cpu_seconds_total"), 0);
   EXPECT_GE(metricValue(text, "process_threads"), 3);
-  EXPECT_GE(metricValue(text, "lghd_http_requests_total{route=\"/v1/info\",method=\"GET\","
-                              "status=\"406\"}"),
+  EXPECT_GE(metricValue(text,
+                        "lghd_http_requests_total{route=\"/v1/info\",method=\"GET\","
+                        "status=\"406\"}"),
             1);
 }
 
@@ -192,10 +191,10 @@ class CorsTest : public ::testing::Test {
 DaemonProcess* CorsTest::daemon = nullptr;
 
 TEST_F(CorsTest, PreflightIsAnsweredBeforeAuthentication) {
-  const auto preflight =
-      http->Options("/v1/jobs", {{"Origin", "https://app.example"},
-                                 {"Access-Control-Request-Method", "POST"},
-                                 {"Access-Control-Request-Headers", "authorization, content-type"}});
+  const auto preflight = http->Options(
+      "/v1/jobs", {{"Origin", "https://app.example"},
+                   {"Access-Control-Request-Method", "POST"},
+                   {"Access-Control-Request-Headers", "authorization, content-type"}});
   ASSERT_TRUE(preflight);
   EXPECT_EQ(preflight->status, 204);
   EXPECT_EQ(preflight->get_header_value("Access-Control-Allow-Origin"), "https://app.example");
@@ -212,9 +211,9 @@ TEST_F(CorsTest, AnswersFromAnAllowedOriginCarryTheHeadersErrorsIncluded) {
   expectError(unauthorized, 401, "unauthorized");
   EXPECT_EQ(unauthorized->get_header_value("Access-Control-Allow-Origin"), "https://other.example");
 
-  const auto ok = http->Post("/v1/render",
-                             {{"Origin", "https://app.example"}, {"Authorization", "Bearer s3cret"}},
-                             kSmall.dump(), "application/json");
+  const auto ok = http->Post(
+      "/v1/render", {{"Origin", "https://app.example"}, {"Authorization", "Bearer s3cret"}},
+      kSmall.dump(), "application/json");
   ASSERT_TRUE(ok);
   ASSERT_EQ(ok->status, 200) << ok->body;
   EXPECT_EQ(ok->get_header_value("Access-Control-Allow-Origin"), "https://app.example");

@@ -72,8 +72,8 @@ json waitForJob(httplib::Client& http, const std::string& id) {
 class JobsTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    daemon = new DaemonProcess({"--max-job-batch", "6", "--jobs-memory-mb", "2", "--max-jobs",
-                                "16", "--job-ttl-seconds", "2"});
+    daemon = new DaemonProcess({"--max-job-batch", "6", "--jobs-memory-mb", "2", "--max-jobs", "16",
+                                "--job-ttl-seconds", "2"});
   }
   static void TearDownTestSuite() {
     delete daemon;
@@ -90,9 +90,9 @@ class JobsTest : public ::testing::Test {
 DaemonProcess* JobsTest::daemon = nullptr;
 
 TEST_F(JobsTest, RenderJobIsAnsweredLikeARender) {
-  const json job = {{"kind", "render"},
-                    {"request",
-                     {{"scene", {{"asset", kBox}}}, {"output", {{"width", 64}, {"height", 48}}}}}};
+  const json job = {
+      {"kind", "render"},
+      {"request", {{"scene", {{"asset", kBox}}}, {"output", {{"width", 64}, {"height", 48}}}}}};
   const json queued = submit(*http, job);
   EXPECT_EQ(queued["kind"], "render");
   EXPECT_EQ(queued["progress"]["total"], 1);
@@ -124,12 +124,13 @@ TEST_F(JobsTest, RenderJobIsAnsweredLikeARender) {
 }
 
 TEST_F(JobsTest, ThumbnailsJobIsTheZipWithTheErrorsOfBadAssets) {
-  const json job = {{"kind", "thumbnails"},
-                    {"request",
-                     {{"assets", {kBox, "missing/Nothing.glb", "BoxTextured-glTF/BoxTextured.gltf"}},
-                      {"width", 32},
-                      {"height", 32},
-                      {"name_template", "{index}.png"}}}};
+  const json job = {
+      {"kind", "thumbnails"},
+      {"request",
+       {{"assets", {kBox, "missing/Nothing.glb", "BoxTextured-glTF/BoxTextured.gltf"}},
+        {"width", 32},
+        {"height", 32},
+        {"name_template", "{index}.png"}}}};
   const json done = waitForJob(*http, submit(*http, job)["id"]);
   ASSERT_EQ(done["status"], "succeeded") << done.dump();
   EXPECT_EQ(done["progress"]["total"], 3);
@@ -181,18 +182,20 @@ TEST_F(JobsTest, AFailedRenderJobAnswersItsError) {
 }
 
 TEST_F(JobsTest, SubmissionErrorsNameTheField) {
-  EXPECT_EQ(expectError(postJson(*http, "/v1/jobs", {{"kind", "bake"}}), 400, "bad_request")["field"],
-            "/kind");
+  EXPECT_EQ(
+      expectError(postJson(*http, "/v1/jobs", {{"kind", "bake"}}), 400, "bad_request")["field"],
+      "/kind");
   EXPECT_EQ(expectError(postJson(*http, "/v1/jobs", json::object()), 400, "bad_request")["field"],
             "/kind");
   EXPECT_EQ(expectError(postJson(*http, "/v1/jobs",
                                  {{"kind", "render"}, {"request", {{"output", {{"width", 0}}}}}}),
                         422, "invalid")["field"],
             "/request/output/width");
-  EXPECT_EQ(expectError(postJson(*http, "/v1/jobs",
-                                 {{"kind", "render"}, {"request", {{"output", {{"width", 5000}}}}}}),
-                        413, "too_large")["field"],
-            "/request/output/width");
+  EXPECT_EQ(
+      expectError(postJson(*http, "/v1/jobs",
+                           {{"kind", "render"}, {"request", {{"output", {{"width", 5000}}}}}}),
+                  413, "too_large")["field"],
+      "/request/output/width");
   EXPECT_EQ(expectError(postJson(*http, "/v1/jobs",
                                  {{"kind", "thumbnails"},
                                   {"request", {{"assets", {kBox}}, {"format", "ndjson"}}}}),
@@ -204,8 +207,8 @@ TEST_F(JobsTest, SubmissionErrorsNameTheField) {
                                   {"request", {{"assets", std::vector<std::string>(7, kBox)}}}}),
                         413, "too_large")["field"],
             "/request/assets");
-  EXPECT_EQ(expectError(postJson(*http, "/v1/jobs", {{"kind", "benchmark"}, {"iterations", 6}}), 413,
-                        "too_large")["field"],
+  EXPECT_EQ(expectError(postJson(*http, "/v1/jobs", {{"kind", "benchmark"}, {"iterations", 6}}),
+                        413, "too_large")["field"],
             "/iterations");
   // --jobs-memory-mb 2: a 1024x1024 PNG may take 4 MiB.
   EXPECT_EQ(expectError(postJson(*http, "/v1/jobs",
@@ -227,14 +230,16 @@ TEST_F(JobsTest, UnknownJobsAreNotFound) {
 }
 
 TEST_F(JobsTest, FinishedJobsExpireAfterTheirTtl) {
-  const std::string id = submit(*http, {{"kind", "render"}, {"request", {{"output", {{"width", 8}, {"height", 8}}}}}})["id"];
+  const std::string id = submit(
+      *http, {{"kind", "render"}, {"request", {{"output", {{"width", 8}, {"height", 8}}}}}})["id"];
   ASSERT_EQ(waitForJob(*http, id)["status"], "succeeded");
   std::this_thread::sleep_for(2500ms);  // --job-ttl-seconds 2
   expectError(http->Get(("/v1/jobs/" + id).c_str()), 404, "not_found");
 }
 
 TEST_F(JobsTest, DeleteForgetsAFinishedJob) {
-  const std::string id = submit(*http, {{"kind", "render"}, {"request", {{"output", {{"width", 8}, {"height", 8}}}}}})["id"];
+  const std::string id = submit(
+      *http, {{"kind", "render"}, {"request", {{"output", {{"width", 8}, {"height", 8}}}}}})["id"];
   ASSERT_EQ(waitForJob(*http, id)["status"], "succeeded");
   const auto deleted = http->Delete(("/v1/jobs/" + id).c_str());
   ASSERT_TRUE(deleted);
@@ -244,15 +249,17 @@ TEST_F(JobsTest, DeleteForgetsAFinishedJob) {
 }
 
 TEST_F(JobsTest, JobsAreCountedInTheMetrics) {
-  const std::string id = submit(*http, {{"kind", "render"}, {"request", {{"output", {{"width", 8}, {"height", 8}}}}}})["id"];
+  const std::string id = submit(
+      *http, {{"kind", "render"}, {"request", {{"output", {{"width", 8}, {"height", 8}}}}}})["id"];
   ASSERT_EQ(waitForJob(*http, id)["status"], "succeeded");
   EXPECT_GE(waitForMetric(*http, "lghd_jobs_total{kind=\"render\",outcome=\"succeeded\"}", 1), 1);
   const std::string text = http->Get("/metrics")->body;
   EXPECT_EQ(metricValue(text, "lghd_jobs_capacity"), 16);
   EXPECT_EQ(metricValue(text, "lghd_jobs_memory_budget_bytes"), 2 << 20);
   EXPECT_GE(metricValue(text, "lghd_jobs{status=\"succeeded\"}"), 1);
-  EXPECT_GE(metricValue(text, "lghd_http_requests_total{route=\"/v1/jobs/{id}\",method=\"GET\","
-                              "status=\"200\"}"),
+  EXPECT_GE(metricValue(text,
+                        "lghd_http_requests_total{route=\"/v1/jobs/{id}\",method=\"GET\","
+                        "status=\"200\"}"),
             1);
   EXPECT_GE(metricValue(text, "lghd_renders_total{outcome=\"ok\"}"), 1);
 }
@@ -278,8 +285,9 @@ class SlowJobsTest : public ::testing::Test {
 DaemonProcess* SlowJobsTest::daemon = nullptr;
 
 json fourThumbnails() {
-  return {{"kind", "thumbnails"},
-          {"request", {{"assets", std::vector<std::string>(4, kBox)}, {"width", 16}, {"height", 16}}}};
+  return {
+      {"kind", "thumbnails"},
+      {"request", {{"assets", std::vector<std::string>(4, kBox)}, {"width", 16}, {"height", 16}}}};
 }
 
 TEST_F(SlowJobsTest, ProgressEtaConflictCancelAndTheCountLimit) {
