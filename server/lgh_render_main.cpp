@@ -64,10 +64,8 @@ nlohmann::json requestJson(const Flags& flags) {
   nlohmann::json json = nlohmann::json::object();
   if (!flags.demo && lgh::cli::isModelFile(flags.requestPath)) {
     json = lgh::cli::modelRequest(
-               flags.requestPath, lgh::cli::parseImageSize(flags.size).value_or(kThumbnailSize),
-               *lgh::cli::parseViewDirection(flags.view.empty() ? "iso" : flags.view),
-               flags.transparent)
-               .request;
+        flags.requestPath, lgh::cli::parseImageSize(flags.size).value_or(kThumbnailSize),
+        *lgh::cli::parseViewDirection(flags.view.empty() ? "iso" : flags.view), flags.transparent);
   } else if (!flags.demo) {
     std::string text = readText(flags.requestPath);
     try {
@@ -125,7 +123,7 @@ int run(const Flags& flags) {
     if (!std::filesystem::is_regular_file(flags.requestPath)) {
       throw lgh::Error(lgh::ErrorCode::NotFound, "cannot open the model", flags.requestPath);
     }
-    context.assetRoot = lgh::cli::modelRequest(flags.requestPath, {}, {}, false).assetRoot;
+    context.assetRoot = lgh::cli::modelAssetRoot(flags.requestPath);
   }
   lgh::Renderer renderer(lgh::cli::rendererOptions(context));
   lgh::RenderResult result = renderer.render(request);

@@ -69,17 +69,18 @@ bool isModelFile(const std::string& path) {
   return extension == ".glb" || extension == ".gltf";
 }
 
-ModelRequest modelRequest(const std::string& modelPath, ImageSize size,
-                          const std::array<float, 3>& viewDirection, bool transparent) {
-  const std::filesystem::path model(modelPath);
-  ModelRequest result;
-  result.assetRoot = model.has_parent_path() ? model.parent_path().string() : ".";
-  result.request = {
-      {"scene", {{"asset", model.filename().string()}}},
+nlohmann::json modelRequest(const std::string& modelPath, ImageSize size,
+                            const std::array<float, 3>& viewDirection, bool transparent) {
+  return {
+      {"scene", {{"asset", std::filesystem::path(modelPath).filename().string()}}},
       {"camera", {{"type", "auto"}, {"view_direction", viewDirection}}},
       {"output",
        {{"width", size.width}, {"height", size.height}, {"transparent_background", transparent}}}};
-  return result;
+}
+
+std::string modelAssetRoot(const std::string& modelPath) {
+  const std::filesystem::path model(modelPath);
+  return model.has_parent_path() ? model.parent_path().string() : ".";
 }
 
 }  // namespace lgh::cli

@@ -28,13 +28,12 @@ std::optional<std::array<float, 3>> parseViewDirection(const std::string& text);
 // Whether the positional argument names a model rather than a request file.
 bool isModelFile(const std::string& path);
 
-struct ModelRequest {
-  nlohmann::json request;  // a render request (proto/render-request.schema.json)
-  std::string assetRoot;   // the model's folder
-};
+// The render request (proto/render-request.schema.json) of a thumbnail of `modelPath`: the model
+// as the scene's asset, relative to modelAssetRoot().
+nlohmann::json modelRequest(const std::string& modelPath, ImageSize size,
+                            const std::array<float, 3>& viewDirection, bool transparent);
 
-// The render request of a thumbnail of `modelPath`.
-ModelRequest modelRequest(const std::string& modelPath, ImageSize size,
-                          const std::array<float, 3>& viewDirection, bool transparent);
+// The model's folder, the asset root of its render.
+std::string modelAssetRoot(const std::string& modelPath);
 
 }  // namespace lgh::cli

@@ -195,8 +195,9 @@ void addCorsHeaders(const std::vector<std::string>& origins, const std::string& 
 // Every body-carrying answer given before httplib read the body closes the connection: the
 // unread body would otherwise be taken for the next request.
 void closeIfBodyUnread(const httplib::Request& request, httplib::Response& response) {
-  if (request.get_header_value<std::uint64_t>("Content-Length") > 0)
+  if (request.get_header_value<std::uint64_t>("Content-Length") > 0) {
     response.set_header("Connection", "close");
+  }
 }
 
 }  // namespace

@@ -13,7 +13,8 @@ namespace {
 
 using json = nlohmann::json;
 
-constexpr std::size_t kMetadataBytes = 16 * 1024;  // file headers and metadata text chunks
+constexpr std::size_t kMetadataBytes =
+    std::size_t{16} * 1024;  // file headers and metadata text chunks
 
 // The largest file the image encoders write for `output`: PNG rows stored unfiltered in the
 // worst case (4 bytes per pixel plus a filter byte per row), EXR half or float RGBA with a tenth
@@ -171,7 +172,9 @@ class BenchmarkWork final : public JobWork {
       : request_(std::move(request)), warmup_(warmup), iterations_(iterations) {}
 
   const char* kind() const override { return "benchmark"; }
-  std::size_t size() const override { return static_cast<std::size_t>(warmup_ + iterations_); }
+  std::size_t size() const override {
+    return static_cast<std::size_t>(warmup_) + static_cast<std::size_t>(iterations_);
+  }
   std::pair<std::optional<lgh::RenderRequest>, std::optional<ApiError>> item(
       std::size_t /*i*/) const override {
     return {request_, std::nullopt};

@@ -77,7 +77,13 @@ const char* jobStatusName(JobStatus status) {
 
 JobStore::JobStore(JobLimits limits, RenderQueue& queue) : limits_(limits), queue_(queue) {}
 
-JobStore::~JobStore() { stop(); }
+JobStore::~JobStore() {
+  try {
+    stop();
+  } catch (const std::exception& error) {  // a destructor must not throw: say so and go on
+    logging::event(spdlog::level::err, "job_store_stop_failed", {{"error", error.what()}});
+  }
+}
 
 void JobStore::start() {
   runner_ = std::thread([this] { run(); });
@@ -251,7 +257,7 @@ void JobStore::runJob(Job& job) {
     if (itemError) {
       outcome.error = std::move(itemError);
     } else {
-      outcome = renderOne(job, std::move(*request));
+      outcome = renderOne(job, *request);
     }
     if (job.cancelled) break;
     const bool goOn = work.record(i, std::move(outcome));
@@ -265,7 +271,7 @@ void JobStore::runJob(Job& job) {
   finishJob(job);
 }
 
-RenderOutcome JobStore::renderOne(Job& job, lgh::RenderRequest request) {
+RenderOutcome JobStore::renderOne(Job& job, const lgh::RenderRequest& request) {
   const Clock::time_point deadline = Clock::now() + limits_.renderDeadline;
   std::shared_ptr<RenderJob> renderJob;
   // A full render queue (429), or a context being replaced (503 with Retry-After), is a reason
@@ -380,8 +386,9 @@ int JobStore::retryAfterSeconds() const {
   for (const auto& [id, job] : jobs_) {
     if (job->expires && (!firstExpiry || *job->expires < *firstExpiry)) firstExpiry = job->expires;
   }
-  if (firstExpiry)
+  if (firstExpiry) {
     return std::max(1, static_cast<int>(std::ceil(secondsBetween(Clock::now(), *firstExpiry))));
+  }
   std::size_t pendingRenders = 0;
   for (const auto& [id, job] : jobs_) {
     if (!ended(job->status)) pendingRenders += job->total - job->done;
@@ -419,8 +426,9 @@ json JobStore::statusJson(const Job& job) const {
     result = {{"href", href + "/result"}, {"mime", job.result->mime}, {"bytes", job.resultBytes}};
   }
   std::optional<SystemClock::time_point> expiresAt;
-  if (job.finished)
+  if (job.finished) {
     expiresAt = *job.finished + std::chrono::duration_cast<SystemClock::duration>(limits_.ttl);
+  }
   const std::optional<double> eta = etaSeconds(job);
   return {
       {"id", job.id},

@@ -88,7 +88,7 @@ class JobStore {
   void run();
   JobPtr nextJob();
   void runJob(Job& job);
-  RenderOutcome renderOne(Job& job, lgh::RenderRequest request);
+  RenderOutcome renderOne(Job& job, const lgh::RenderRequest& request);
   void finishJob(Job& job);
   void endJob(Job& job, JobStatus status, const char* outcome);  // under mutex_
   bool stopping() const;
