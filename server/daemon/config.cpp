@@ -13,7 +13,8 @@ namespace {
 
 constexpr const char* kDescription =
     "lghd: headless GPU render service. POST a render request (JSON, see /openapi.json) to\n"
-    "/v1/render and get a PNG or EXR back; POST /v1/thumbnails renders a batch of glTF assets.\n"
+    "/v1/render and get a PNG or EXR back; POST /v1/thumbnails renders a batch of glTF assets;\n"
+    "POST /v1/jobs takes long work (a render, a batch, a benchmark) and answers 202 at once.\n"
     "With no flags it serves the built-in demo scene on 127.0.0.1:8080:\n"
     "  lghd &\n"
     "  curl -s -X POST localhost:8080/v1/render -d '{}' -o demo.png\n"

@@ -182,6 +182,52 @@ TEST(Contract, DefaultsTheTextsStateAreLghds) {
   EXPECT_GE(checked, 10);
 }
 
+// docs/DAEMON.md's configuration table: "| `--flag` | `VARIABLE` | `default` | ...".
+TEST(Contract, TheDaemonDocsConfigurationTableStatesLghdsDefaults) {
+  const DaemonConfig config = defaultConfig();
+  const std::map<std::string, long long> defaults = {
+      {"--port", config.port},
+      {"--http-threads", config.httpThreads},
+      {"--grace-seconds", config.grace.count() / 1000},
+      {"--queue-depth", config.queueDepth},
+      {"--deadline-seconds", config.deadline.count() / 1000},
+      {"--scene-cache-mb", static_cast<long long>(config.sceneCacheBytes >> 20)},
+      {"--max-body-mb", static_cast<long long>(config.limits.maxBodyBytes >> 20)},
+      {"--max-width", config.limits.maxWidth},
+      {"--max-height", config.limits.maxHeight},
+      {"--max-pixels", config.limits.maxPixels},
+      {"--max-lights", config.limits.maxLights},
+      {"--max-vpls", config.limits.maxVpls},
+      {"--max-triangles", static_cast<long long>(config.limits.maxTriangles)},
+      {"--max-texture-size", config.limits.maxTextureSize},
+      {"--max-batch", config.limits.maxBatch},
+      {"--max-jobs", config.jobs.maxJobs},
+      {"--jobs-memory-mb", static_cast<long long>(config.jobs.memoryBytes >> 20)},
+      {"--job-ttl-seconds", config.jobs.ttl.count()},
+      {"--max-job-batch", config.jobs.maxBatch},
+      {"--job-deadline-seconds", config.jobs.renderDeadline.count() / 1000},
+  };
+  const std::regex row(R"(^\| (`--[a-z-]+`(?:, `--[a-z-]+`)*) \| [^|]* \| `(\d+)` \|)");
+  const std::regex flag(R"(--[a-z-]+)");
+  std::set<std::string> checked;
+  std::istringstream lines(readSource("docs/DAEMON.md"));
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch match;
+    if (!std::regex_search(line, match, row)) continue;
+    const std::string flags = match[1];
+    for (auto it = std::sregex_iterator(flags.begin(), flags.end(), flag);
+         it != std::sregex_iterator(); ++it) {
+      const std::string name = (*it)[0];
+      if (!defaults.contains(name)) continue;
+      EXPECT_EQ(std::stoll(match[2]), defaults.at(name)) << line;
+      checked.insert(name);
+    }
+  }
+  for (const auto& [name, value] : defaults) {
+    EXPECT_TRUE(checked.contains(name)) << "docs/DAEMON.md's table lacks " << name;
+  }
+}
+
 TEST(Contract, WhatLghRenderAllowsIsTheRenderersDefaultLimits) {
   const lgh::RequestLimits limits;
   const json settings = json::parse(lgh::protoDocument("render-settings.schema.json"));
