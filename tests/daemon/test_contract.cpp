@@ -63,7 +63,7 @@ void collectTexts(const json& node, const std::string& path,
   } else if (node.is_structured()) {
     for (auto it = node.begin(); it != node.end(); ++it) {
       const std::string key = node.is_object() ? it.key() : std::to_string(out.size());
-      collectTexts(it.value(), path + "/" + key, out);
+      collectTexts(it.value(), std::string(path).append("/").append(key), out);
     }
   }
 }

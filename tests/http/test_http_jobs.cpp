@@ -35,7 +35,7 @@ json submit(httplib::Client& http, const json& job) {
     return {};
   }
   EXPECT_EQ(result->status, 202) << result->body;
-  const json status = json::parse(result->body);
+  json status = json::parse(result->body);
   EXPECT_EQ(result->get_header_value("Location"), "/v1/jobs/" + status.value("id", ""));
   expectMatchesSchema(status, "job-status.schema.json");
   return status;

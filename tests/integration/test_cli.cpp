@@ -163,7 +163,7 @@ TEST(LghRenderThumbnail, AModelBecomesASquareThumbnailWithoutAnyJson) {
   EXPECT_EQ(image.height, 256);
   // The model is in the middle of the frame, the background around it.
   const auto at = [&](int x, int y) {
-    return image.pixels8[(y * image.width + x) * image.channels];
+    return image.pixels8[static_cast<std::size_t>((y * image.width + x) * image.channels)];
   };
   EXPECT_NE(at(128, 128), at(2, 2));
 }

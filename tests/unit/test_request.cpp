@@ -605,10 +605,12 @@ TEST(ErrorCodes, Names) {
 
 TEST(ProtoDocuments, AllShippedAndReachable) {
   const std::vector<std::string> expected{
-      "camera.schema.json",          "light.schema.json",           "render-request.schema.json",
-      "render-response.schema.json", "render-settings.schema.json", "scene.schema.json",
+      "camera.schema.json",          "light.schema.json",
+      "render-request.schema.json",  "render-response.schema.json",
+      "render-settings.schema.json", "scene.schema.json",
       "timings.schema.json",         "thumbnails-request.schema.json",
-      "job-request.schema.json",     "job-status.schema.json",      "benchmark-result.schema.json"};
+      "job-request.schema.json",     "job-status.schema.json",
+      "benchmark-result.schema.json"};
   const std::vector<std::string> shipped = schemaFileNames();
   for (const std::string& name : expected) {
     EXPECT_FALSE(protoDocument(name).empty()) << name;
@@ -722,8 +724,8 @@ constexpr const char* kDraft07MetaSchema = R"json({
 constexpr const char* kDraft07OnlyKeywords[] = {"definitions", "dependencies", "additionalItems"};
 // What may stand beside a "$ref": annotations only. 2020-12 applies a $ref's siblings, valijson
 // (draft 7) ignores them; with annotations only, both validate alike.
-constexpr const char* kRefAnnotations[] = {"$ref", "description", "default", "title", "examples",
-                                           "$comment"};
+constexpr const char* kRefAnnotations[] = {"$ref",  "description", "default",
+                                           "title", "examples",    "$comment"};
 
 void expectFormsBothRead(const json& node, const std::string& path) {
   if (node.is_array()) {
@@ -737,7 +739,8 @@ void expectFormsBothRead(const json& node, const std::string& path) {
     EXPECT_FALSE(node.contains(keyword)) << path << " uses the draft-07 keyword " << keyword;
   }
   if (node.contains("items")) {
-    EXPECT_TRUE(node["items"].is_object()) << path << ": array-form items is prefixItems in 2020-12";
+    EXPECT_TRUE(node["items"].is_object())
+        << path << ": array-form items is prefixItems in 2020-12";
   }
   if (node.contains("$ref")) {
     for (const auto& [key, value] : node.items()) {
@@ -748,7 +751,7 @@ void expectFormsBothRead(const json& node, const std::string& path) {
   }
   for (const auto& [key, value] : node.items()) {
     if (key != "examples" && key != "default" && key != "enum" && key != "const") {
-      expectFormsBothRead(value, path + "/" + key);
+      expectFormsBothRead(value, std::string(path).append("/").append(key));
     }
   }
 }
@@ -923,7 +926,8 @@ TEST(EnumNames, RoundTripAndAliases) {
 }  // namespace
 }  // namespace lgh
 
-// --- Discriminated oneOf, and the other request schemas -------------------------------------------
+// --- Discriminated oneOf, and the other request schemas
+// -------------------------------------------
 
 namespace lgh {
 namespace {
@@ -968,7 +972,8 @@ TEST(ProtoSchemas, ThumbnailsRequestNamesTheField) {
       << unknown.message();
   EXPECT_EQ(schemaError({{"width", 0}}, file).code(), ErrorCode::Invalid);
   EXPECT_EQ(schemaError({{"format", "tar"}}, file).field(), "/format");
-  const Error badName = schemaError({{"views", {{{"name", "a b"}, {"direction", {0, 0, 1}}}}}}, file);
+  const Error badName =
+      schemaError({{"views", {{{"name", "a b"}, {"direction", {0, 0, 1}}}}}}, file);
   EXPECT_EQ(badName.field(), "/views/0/name");
   EXPECT_NE(std::string(badName.message()).find("must match"), std::string::npos)
       << badName.message();
