@@ -25,9 +25,6 @@ void sendError(httplib::Response& response, const ApiError& error);
 // The JSON body; an empty body is {}. Throws ApiError 400 naming the byte of a syntax error.
 nlohmann::json parseJsonBody(const std::string& body);
 
-// Whether the client asked for a JSON answer: Accept names application/json, before any image/*.
-bool wantsJson(const httplib::Request& request);
-
 // The request's deadline: now + the configured deadline, or sooner when the client's
 // X-Lgh-Deadline-Ms header asks for less. Throws ApiError 400 for a malformed header.
 Clock::time_point deadlineFor(const httplib::Request& request, const DaemonConfig& config);

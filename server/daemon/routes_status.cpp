@@ -3,6 +3,7 @@
 #include <httplib.h>
 
 #include "http_util.hpp"
+#include "process_metrics.hpp"
 #include "routes.hpp"
 #include "version.hpp"
 
@@ -19,6 +20,14 @@ json limitsJson(const DaemonConfig& config) {
           {"max_triangles", limits.maxTriangles},  {"max_texture_size", limits.maxTextureSize},
           {"max_batch", limits.maxBatch},          {"queue_depth", config.queueDepth},
           {"deadline_ms", config.deadline.count()}};
+}
+
+json jobLimitsJson(const JobLimits& jobs) {
+  return {{"max_jobs", jobs.maxJobs},
+          {"memory_budget_bytes", jobs.memoryBytes},
+          {"ttl_seconds", jobs.ttl.count()},
+          {"max_batch", jobs.maxBatch},
+          {"deadline_ms", jobs.renderDeadline.count()}};
 }
 
 json buildJson() {
@@ -59,7 +68,9 @@ json infoJson(const DaemonContext& context) {
             {"capacity", gauges.queueCapacity},
             {"rendering", gauges.rendering}}},
           {"scene_cache", cacheJson(gauges)},
-          {"auth", !context.config.authToken.empty()}};
+          {"jobs", jobLimitsJson(context.config.jobs)},
+          {"auth", !context.config.authToken.empty()},
+          {"cors_origins", context.config.corsOrigins}};
 }
 
 }  // namespace
@@ -80,7 +91,8 @@ void addStatusRoutes(httplib::Server& server, DaemonContext& context) {
                sendJson(response, 200, infoJson(context));
              }));
   server.Get("/metrics", [&context](const httplib::Request&, httplib::Response& response) {
-    response.set_content(context.metrics.exposition(context.queue.gauges()),
+    response.set_content(context.metrics.exposition(context.queue.gauges()) +
+                             context.jobs.exposition() + processMetricsExposition(),
                          "text/plain; version=0.0.4; charset=utf-8");
   });
 }

@@ -567,9 +567,9 @@ TEST(RequestParse, ZeroPlanesAreDerivedNotContradictory) {
 // Every "default" the schema states, sent explicitly, must parse to the struct's default.
 TEST(RequestParse, SchemaDefaultsMatchStructDefaults) {
   const json bundle = bundleSchema("render-request.schema.json");
-  const auto& definitions = bundle.at("definitions");
-  const json& lgh = definitions.at("render-settings.schema.json").at("definitions").at("lgh");
-  const json& camera = definitions.at("camera.schema.json").at("definitions");
+  const auto& definitions = bundle.at("$defs");
+  const json& lgh = definitions.at("render-settings.schema.json").at("$defs").at("lgh");
+  const json& camera = definitions.at("camera.schema.json").at("$defs");
 
   auto expectDefaults = [](const json& properties, const std::function<json(json)>& wrap,
                            const RenderRequest& expected) {
@@ -583,7 +583,7 @@ TEST(RequestParse, SchemaDefaultsMatchStructDefaults) {
   expectDefaults(
       bundle.at("properties"), [](json o) { return o; }, defaults);
   expectDefaults(
-      definitions.at("output").at("properties"),
+      bundle.at("$defs").at("output").at("properties"),
       [](json o) {
         return json{{"output", o}};
       },
@@ -645,9 +645,12 @@ TEST(ErrorCodes, Names) {
 
 TEST(ProtoDocuments, AllShippedAndReachable) {
   const std::vector<std::string> expected{
-      "camera.schema.json",          "light.schema.json",           "render-request.schema.json",
-      "render-response.schema.json", "render-settings.schema.json", "scene.schema.json",
-      "timings.schema.json"};
+      "camera.schema.json",          "light.schema.json",
+      "render-request.schema.json",  "render-response.schema.json",
+      "render-settings.schema.json", "scene.schema.json",
+      "timings.schema.json",         "thumbnails-request.schema.json",
+      "job-request.schema.json",     "job-status.schema.json",
+      "benchmark-result.schema.json"};
   const std::vector<std::string> shipped = schemaFileNames();
   for (const std::string& name : expected) {
     EXPECT_FALSE(protoDocument(name).empty()) << name;
@@ -757,7 +760,46 @@ constexpr const char* kDraft07MetaSchema = R"json({
     "default": true
 })json";
 
-TEST(ProtoDocuments, EachIsJsonAndAValidDraft07Schema) {
+// Keywords of draft 7 that 2020-12 renamed or reshaped: none may appear in a proto schema.
+constexpr const char* kDraft07OnlyKeywords[] = {"definitions", "dependencies", "additionalItems"};
+// What may stand beside a "$ref": annotations only. 2020-12 applies a $ref's siblings, valijson
+// (draft 7) ignores them; with annotations only, both validate alike.
+constexpr const char* kRefAnnotations[] = {"$ref",  "description", "default",
+                                           "title", "examples",    "$comment"};
+
+void expectFormsBothRead(const json& node, const std::string& path) {
+  if (node.is_array()) {
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      expectFormsBothRead(node[i], path + "/" + std::to_string(i));
+    }
+    return;
+  }
+  if (!node.is_object()) return;
+  for (const char* keyword : kDraft07OnlyKeywords) {
+    EXPECT_FALSE(node.contains(keyword)) << path << " uses the draft-07 keyword " << keyword;
+  }
+  if (node.contains("items")) {
+    EXPECT_TRUE(node["items"].is_object())
+        << path << ": array-form items is prefixItems in 2020-12";
+  }
+  if (node.contains("$ref")) {
+    for (const auto& [key, value] : node.items()) {
+      EXPECT_NE(std::find(std::begin(kRefAnnotations), std::end(kRefAnnotations), key),
+                std::end(kRefAnnotations))
+          << path << ": \"" << key << "\" beside $ref is applied by 2020-12, ignored by valijson";
+    }
+  }
+  for (const auto& [key, value] : node.items()) {
+    if (key != "examples" && key != "default" && key != "enum" && key != "const") {
+      expectFormsBothRead(value, std::string(path).append("/").append(key));
+    }
+  }
+}
+
+// The files are JSON Schema 2020-12 (the dialect of OpenAPI 3.1) written in forms valijson, a
+// draft-07 validator, reads the same way: so the draft-07 meta-schema accepts them too, and they
+// compile. tests/contract validates them against the 2020-12 meta-schema itself (ajv).
+TEST(ProtoDocuments, EachIsA2020_12SchemaInFormsValijsonReads) {
   const json metaDocument = json::parse(kDraft07MetaSchema);
   valijson::Schema metaSchema;
   compileSchema(metaDocument, metaSchema);
@@ -765,8 +807,11 @@ TEST(ProtoDocuments, EachIsJsonAndAValidDraft07Schema) {
     SCOPED_TRACE(name);
     json document;
     ASSERT_NO_THROW(document = json::parse(protoDocument(name)));
-    EXPECT_EQ(document.value("$schema", ""), "http://json-schema.org/draft-07/schema#");
-    EXPECT_TRUE(document.value("$id", "").ends_with("/" + name));
+    EXPECT_EQ(document.value("$schema", ""), "https://json-schema.org/draft/2020-12/schema");
+    // No $id: relative $refs ("scene.schema.json") resolve against where the file is, proto/ or
+    // the daemon's /proto/, as the OpenAPI document's do.
+    EXPECT_FALSE(document.contains("$id"));
+    expectFormsBothRead(document, name);
     EXPECT_EQ(validationErrors(metaSchema, document), std::vector<std::string>{});
 
     // Compiles with valijson, its cross-file references resolved from the embedded files.
@@ -781,10 +826,12 @@ TEST(ProtoDocuments, EachIsJsonAndAValidDraft07Schema) {
 void expectDocumented(const json& schema, const std::string& path) {
   if (!schema.is_object()) return;
   if (schema.value("type", json()) == "object") {
-    EXPECT_TRUE(schema.contains("additionalProperties") || schema.contains("allOf"))
+    // A discriminated oneOf closes the object in each of its branches.
+    EXPECT_TRUE(schema.contains("additionalProperties") || schema.contains("allOf") ||
+                schema.contains("oneOf"))
         << path << " is an object schema without additionalProperties";
   }
-  for (const char* key : {"properties", "definitions"}) {
+  for (const char* key : {"properties", "$defs"}) {
     if (!schema.contains(key)) continue;
     for (const auto& [name, child] : schema[key].items()) {
       if (std::string(key) == "properties") {
@@ -914,6 +961,83 @@ TEST(EnumNames, RoundTripAndAliases) {
   EXPECT_EQ(enumName(ImageFormat::ExrHalf), "exr");  // the first name is the canonical one
   EXPECT_FALSE(enumFromName<ToneMap>("filmic").has_value());
   EXPECT_EQ(enumNameList<ToneMap>(), "none, reinhard, aces");
+}
+
+}  // namespace
+}  // namespace lgh
+
+// --- Discriminated oneOf, and the other request schemas
+// -------------------------------------------
+
+namespace lgh {
+namespace {
+
+// valijson knows no discriminator: the bundle lowers the camera's oneOf to one if/then per type,
+// so that an error is the selected camera's (see schema_bundle.hpp). The file keeps the oneOf.
+TEST(SchemaBundle, LowersADiscriminatedOneOfToIfThen) {
+  const json document = json::parse(protoDocument("camera.schema.json"));
+  EXPECT_EQ(document.at("discriminator").at("propertyName"), "type");
+  EXPECT_EQ(document.at("oneOf").size(), 3U);
+
+  const json bundle = bundleSchema("camera.schema.json");
+  EXPECT_FALSE(bundle.contains("oneOf"));
+  EXPECT_FALSE(bundle.contains("discriminator"));
+  ASSERT_EQ(bundle.at("allOf").size(), 3U);
+  for (const json& branch : bundle.at("allOf")) {
+    const std::string type = branch.at("if").at("properties").at("type").at("const");
+    EXPECT_EQ(branch.at("then").at("$ref"), "#/$defs/" + type);
+    EXPECT_EQ(document.at("discriminator").at("mapping").at(type), "#/$defs/" + type);
+  }
+}
+
+Error schemaError(const json& value, const std::string& file) {
+  try {
+    validateAgainstProtoSchema(value, file);
+  } catch (const Error& error) {
+    return error;
+  }
+  ADD_FAILURE() << file << " accepted " << value.dump();
+  return Error(ErrorCode::Internal, "no error");
+}
+
+TEST(ProtoSchemas, ThumbnailsRequestNamesTheField) {
+  const std::string file = "thumbnails-request.schema.json";
+  EXPECT_NO_THROW(validateAgainstProtoSchema(json::object(), file));
+  EXPECT_NO_THROW(validateAgainstProtoSchema(
+      {{"assets", {"a.glb"}}, {"views", {{{"name", "front"}, {"direction", {0, 0, 1}}}}}}, file));
+
+  Error unknown = schemaError({{"colour", "red"}}, file);
+  EXPECT_EQ(unknown.field(), "/colour");
+  EXPECT_NE(std::string(unknown.message()).find("allowed here: assets"), std::string::npos)
+      << unknown.message();
+  EXPECT_EQ(schemaError({{"width", 0}}, file).code(), ErrorCode::Invalid);
+  EXPECT_EQ(schemaError({{"format", "tar"}}, file).field(), "/format");
+  const Error badName =
+      schemaError({{"views", {{{"name", "a b"}, {"direction", {0, 0, 1}}}}}}, file);
+  EXPECT_EQ(badName.field(), "/views/0/name");
+  EXPECT_NE(std::string(badName.message()).find("must match"), std::string::npos)
+      << badName.message();
+  EXPECT_EQ(schemaError({{"views", {{{"name", "a"}}}}}, file).field(), "/views/0/direction");
+}
+
+TEST(ProtoSchemas, JobRequestSelectsTheKindsSchema) {
+  const std::string file = "job-request.schema.json";
+  EXPECT_NO_THROW(validateAgainstProtoSchema({{"kind", "render"}}, file));
+  EXPECT_NO_THROW(validateAgainstProtoSchema(
+      {{"kind", "thumbnails"}, {"request", {{"assets", {"a.glb"}}}}}, file));
+  EXPECT_NO_THROW(validateAgainstProtoSchema({{"kind", "benchmark"}, {"iterations", 3}}, file));
+
+  EXPECT_EQ(schemaError({{"kind", "bake"}}, file).field(), "/kind");
+  EXPECT_EQ(schemaError(json::object(), file).field(), "/kind");
+  EXPECT_EQ(schemaError({{"kind", "thumbnails"}}, file).field(), "/request");
+  // Only the selected kind's members are allowed, and errors reach into its request.
+  EXPECT_EQ(schemaError({{"kind", "render"}, {"iterations", 3}}, file).field(), "/iterations");
+  const Error width =
+      schemaError({{"kind", "render"}, {"request", {{"output", {{"width", 0}}}}}}, file);
+  EXPECT_EQ(width.field(), "/request/output/width");
+  EXPECT_EQ(width.code(), ErrorCode::Invalid);
+  EXPECT_EQ(schemaError({{"kind", "thumbnails"}, {"request", {{"width", "big"}}}}, file).field(),
+            "/request/width");
 }
 
 }  // namespace

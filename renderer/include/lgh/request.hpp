@@ -267,4 +267,8 @@ inline RenderRequest parseRenderRequest(const char* text, const RequestLimits& l
 // The schema documents shipped in proto/, by file name (e.g. "render-request.schema.json").
 const std::string& protoDocument(const std::string& fileName);
 
+// Validates `value` against a proto schema (e.g. "thumbnails-request.schema.json"): throws
+// lgh::Error naming the JSON path, BadRequest for shape errors, Invalid for range errors.
+void validateAgainstProtoSchema(const nlohmann::json& value, const std::string& schemaFile);
+
 }  // namespace lgh
