@@ -7,6 +7,7 @@
 #include "frame_pipeline.hpp"
 #include "frame_report.hpp"
 #include "gl/gl_api.hpp"
+#include "gl/gl_objects.hpp"
 #include "gl/gpu_timer.hpp"
 #include "lgh/error.hpp"
 #include "scene/gltf/gltf_loader.hpp"
@@ -47,6 +48,25 @@ const DeviceInfo& Renderer::device() const { return impl_->device; }
 const RendererOptions& Renderer::options() const { return impl_->options; }
 
 Renderer::CacheStats Renderer::sceneCacheStats() const { return impl_->cache.stats(); }
+
+ResourceStats Renderer::resourceStats() const {
+  ResourceStats stats;
+  const auto live = gl::liveObjects();
+  for (std::size_t i = 0; i < live.size(); ++i) {
+    stats.glObjects[std::string(enumName(static_cast<gl::ObjectKind>(i)))] = live[i];
+  }
+  stats.sceneCacheBytes = impl_->cache.stats().bytes;
+  if (gl::currentApi() != &impl_->context->api()) impl_->context->makeCurrent();
+  if (impl_->context->api().NVX_gpu_memory_info != 0) {
+    GLint total = 0;
+    GLint available = 0;
+    glGetIntegerv(GL_GPU_MEMORY_INFO_TOTAL_AVAILABLE_MEMORY_NVX, &total);
+    glGetIntegerv(GL_GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX, &available);
+    stats.gpuMemoryTotalKiB = total;
+    stats.gpuMemoryAvailableKiB = available;
+  }
+  return stats;
+}
 
 ShadowInfo Renderer::shadowInfo() const {
   return impl_->shadowDevice.info(impl_->pipeline.shadowTransport());

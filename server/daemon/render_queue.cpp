@@ -160,6 +160,7 @@ RuntimeGauges RenderQueue::gauges() const {
   gauges.sceneCacheEntries = cacheStats_.entries;
   gauges.sceneCacheBytes = cacheStats_.bytes;
   gauges.sceneCacheBudgetBytes = options_.renderer.sceneCacheBytes;
+  gauges.resources = resources_;
   gauges.shadowTracer = shadowInfo_.status == "ready"         ? 1
                         : shadowInfo_.status == "unavailable" ? 0
                                                               : -1;
@@ -338,9 +339,16 @@ void RenderQueue::renderTicket(const RenderJob& job, RenderTicket& ticket) {
 void RenderQueue::publishRendererState() {
   const lgh::Renderer::CacheStats stats = renderer_->sceneCacheStats();
   lgh::ShadowInfo shadows = renderer_->shadowInfo();
+  lgh::ResourceStats resources = renderer_->resourceStats();
   std::lock_guard lock(mutex_);
   cacheStats_ = stats;
   shadowInfo_ = std::move(shadows);
+  resources_ = std::move(resources);
+}
+
+lgh::ResourceStats RenderQueue::resources() const {
+  std::lock_guard lock(mutex_);
+  return resources_;
 }
 
 lgh::ShadowInfo RenderQueue::shadows() const {

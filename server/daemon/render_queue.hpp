@@ -68,6 +68,8 @@ class RenderQueue {
   RuntimeGauges gauges() const;
   // The renderer's shadow side, as of its last render.
   lgh::ShadowInfo shadows() const;
+  // Live GL objects and GPU memory, as of the last render.
+  lgh::ResourceStats resources() const;
 
   // Shutdown, in this order: refuse new jobs (503); let queued jobs finish for up to `grace`, then
   // answer what is left 503 (returns whether everything finished); end the render thread, waiting
@@ -121,6 +123,7 @@ class RenderQueue {
   std::thread vulkanProbe_;
   lgh::Renderer::CacheStats cacheStats_;
   lgh::ShadowInfo shadowInfo_;
+  lgh::ResourceStats resources_;
   double averageRenderSeconds_ = 0.1;
   std::thread thread_;
 };
