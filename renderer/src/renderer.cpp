@@ -1,5 +1,8 @@
 #include "lgh/renderer.hpp"
 
+#include <cstdlib>
+
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "context/gl_context.hpp"
@@ -20,7 +23,32 @@ struct Renderer::Impl {
   explicit Impl(const RendererOptions& opts)
       : options(opts), context(GlContext::create(opts)), cache(opts), pipeline(&shadowDevice) {
     device = context->info();
+    if (const char* after = std::getenv("LGH_DEBUG_CONTEXT_LOSS_AFTER"); after != nullptr) {
+      simulatedLossAfter = std::atoi(after);
+      spdlog::warn("LGH_DEBUG_CONTEXT_LOSS_AFTER: a context loss is reported after {} frames",
+                   simulatedLossAfter);
+    }
   }
+
+  // A reset (or the test hook's simulated one) ends this renderer: its GL objects are gone.
+  void checkContext() {
+    GLenum status = glGetGraphicsResetStatus();
+    if (simulatedLossAfter >= 0 && ++frames > simulatedLossAfter) status = GL_UNKNOWN_CONTEXT_RESET;
+    if (status == GL_NO_ERROR) return;
+    healthy = false;
+    const char* cause = status == GL_GUILTY_CONTEXT_RESET     ? "caused by this context"
+                        : status == GL_INNOCENT_CONTEXT_RESET ? "caused elsewhere"
+                                                              : "cause unknown";
+    spdlog::error("renderer: the GL context was lost ({})", cause);
+    throw Error(ErrorCode::Unavailable,
+                fmt::format("the GL context was lost in a GPU reset ({}); the renderer is made "
+                            "again",
+                            cause));
+  }
+
+  bool healthy = true;
+  int simulatedLossAfter = -1;
+  int frames = 0;
 
   // Destroyed in reverse: the GL objects of the frame and the cache go first, then the Vulkan
   // device that the cache's acceleration structures live on, then the GL context.
@@ -83,7 +111,12 @@ RenderResult Renderer::render(const RenderRequest& request) {
   return result;
 }
 
+bool Renderer::healthy() const { return impl_->healthy; }
+
 RenderResult Renderer::renderFrame(const RenderRequest& request) {
+  if (!impl_->healthy) {
+    throw Error(ErrorCode::Unavailable, "this renderer's GL context was lost: make a new one");
+  }
   // Another Renderer on this thread may have made its own context current since.
   if (gl::currentApi() != &impl_->context->api()) impl_->context->makeCurrent();
   FrameReport report;
@@ -101,8 +134,10 @@ RenderResult Renderer::renderFrame(const RenderRequest& request) {
     impl_->pipeline.render(request, *lookup.entry, impl_->timer, report);
   } catch (...) {
     impl_->timer.discard();
+    impl_->checkContext();  // a lost context explains the failure better than the failure does
     throw;
   }
+  impl_->checkContext();
 
   RenderResult result;
   result.device = impl_->device;

@@ -325,7 +325,10 @@ void RenderQueue::renderTicket(const RenderJob& job, RenderTicket& ticket) {
   } catch (const lgh::Error& error) {
     ticket.fail(fromLghError(error));
     metrics_.recordRender("error");
-    if (error.code() == lgh::ErrorCode::Internal) recoverRenderer(error.what());
+    // A GL failure may have broken the context, and a lost one (GPU reset) certainly has.
+    if (error.code() == lgh::ErrorCode::Internal || !renderer_->healthy()) {
+      recoverRenderer(error.what());
+    }
   } catch (const std::exception& error) {
     ticket.fail(internalError(error.what()));
     metrics_.recordRender("error");

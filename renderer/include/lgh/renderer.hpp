@@ -42,6 +42,11 @@ class Renderer {
   // Live GL objects and GPU memory (queries the GL context: call it on the render thread).
   ResourceStats resourceStats() const;
 
+  // False once the GL context was lost (a GPU reset reported through GL_KHR_robustness): every
+  // later render fails with Unavailable; make a new Renderer. The environment variable
+  // LGH_DEBUG_CONTEXT_LOSS_AFTER=N (a test hook) reports a loss after N frames.
+  bool healthy() const;
+
   struct Impl;
 
  private:

@@ -15,7 +15,8 @@ struct ResourceStats {
   std::map<std::string, std::int64_t> glObjects;  // "buffer", "texture", ... -> live count
   std::int64_t gpuMemoryTotalKiB = -1;            // -1: the driver does not say
   std::int64_t gpuMemoryAvailableKiB = -1;
-  std::size_t sceneCacheBytes = 0;  // GPU memory of the cached scenes (GL + acceleration structures)
+  std::size_t sceneCacheBytes =
+      0;  // GPU memory of the cached scenes (GL + acceleration structures)
   nlohmann::json toJson() const;
 };
 

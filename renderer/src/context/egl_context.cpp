@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "context/container_hints.hpp"
 #include "context/gl_context.hpp"
 #include "lgh/error.hpp"
 
@@ -155,18 +156,33 @@ class EglContext final : public GlContext {
       throw Error(ErrorCode::Unavailable, "EGL display lacks EGL_KHR_surfaceless_context");
     }
     EGLConfig config = chooseConfig(extensions);
+    // A robust context (GL_KHR_robustness) reports a GPU reset instead of hanging on it: the
+    // renderer then fails the frame and is made again. Not every driver offers one.
+    const bool robustness = hasExtension(extensions, "EGL_EXT_create_context_robustness");
     // Ask for 4.6 core; Mesa's llvmpipe stops at 4.5, which has everything we use.
     for (int minor : {6, 5}) {
-      std::vector<EGLint> attributes{
-          EGL_CONTEXT_MAJOR_VERSION,       4,
-          EGL_CONTEXT_MINOR_VERSION,       minor,
-          EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
-      if (debug) attributes.insert(attributes.end(), {EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE});
-      attributes.push_back(EGL_NONE);
-      context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, attributes.data());
-      if (context_ != EGL_NO_CONTEXT) return;
-      spdlog::info("no OpenGL 4.{} core context on {} ({}); trying lower", minor, info_.contextPath,
-                   eglErrorName(eglGetError()));
+      for (bool robust : {true, false}) {
+        if (robust && !robustness) continue;
+        std::vector<EGLint> attributes{
+            EGL_CONTEXT_MAJOR_VERSION,       4,
+            EGL_CONTEXT_MINOR_VERSION,       minor,
+            EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
+        if (debug) attributes.insert(attributes.end(), {EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE});
+        if (robust) {
+          attributes.insert(attributes.end(), {EGL_CONTEXT_OPENGL_ROBUST_ACCESS_EXT, EGL_TRUE,
+                                               EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY_EXT,
+                                               EGL_LOSE_CONTEXT_ON_RESET_EXT});
+        }
+        attributes.push_back(EGL_NONE);
+        context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, attributes.data());
+        if (context_ != EGL_NO_CONTEXT) {
+          info_.robustContext = robust;
+          return;
+        }
+        spdlog::info("no {}OpenGL 4.{} core context on {} ({}); trying {}", robust ? "robust " : "",
+                     minor, info_.contextPath, eglErrorName(eglGetError()),
+                     robust ? "without robustness" : "lower");
+      }
     }
     throw Error(ErrorCode::Unavailable,
                 fmt::format("no OpenGL 4.5+ core context on {}", info_.contextPath));
@@ -196,12 +212,13 @@ std::vector<EGLDeviceEXT> queryEglDevices() {
                            hasExtension(clientExtensions, "EGL_EXT_device_base");
   if (!hasExtension(clientExtensions, "EGL_EXT_platform_device") || !enumeration ||
       eglQueryDevicesEXT == nullptr) {
-    throw Error(ErrorCode::Unavailable,
-                fmt::format("EGL has no EGL_EXT_platform_device with EGL_EXT_device_enumeration "
-                            "or EGL_EXT_device_base (is the vendor's EGL ICD JSON installed? In "
-                            "containers, NVIDIA_DRIVER_CAPABILITIES must include 'graphics'); "
-                            "client extensions: {}",
-                            clientExtensions != nullptr ? clientExtensions : "none"));
+    throw Error(
+        ErrorCode::Unavailable,
+        fmt::format("EGL has no EGL_EXT_platform_device with EGL_EXT_device_enumeration "
+                    "or EGL_EXT_device_base (is the vendor's EGL ICD JSON installed? In "
+                    "containers, NVIDIA_DRIVER_CAPABILITIES must include 'graphics'); "
+                    "client extensions: {}{}",
+                    clientExtensions != nullptr ? clientExtensions : "none", eglDeviceHints()));
   }
   EGLint count = 0;
   if (eglQueryDevicesEXT(0, nullptr, &count) != EGL_TRUE) failEgl("eglQueryDevicesEXT");
@@ -233,8 +250,8 @@ std::unique_ptr<GlContext> createEglDeviceContext(const RendererOptions& options
   }
   if (options.gpuIndex < 0 || static_cast<size_t>(options.gpuIndex) >= devices.size()) {
     throw Error(ErrorCode::Unavailable,
-                fmt::format("GPU index {} out of range: EGL lists {} device(s)", options.gpuIndex,
-                            devices.size()));
+                fmt::format("GPU index {} out of range: EGL lists {} device(s){}", options.gpuIndex,
+                            devices.size(), eglDeviceHints()));
   }
   EGLDeviceEXT device = devices[static_cast<size_t>(options.gpuIndex)];
   EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device, nullptr);

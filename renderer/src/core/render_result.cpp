@@ -11,7 +11,7 @@ nlohmann::json DeviceInfo::toJson() const {
           {"egl_device_count", eglDeviceCount}, {"gl_vendor", glVendor},
           {"gl_renderer", glRenderer},          {"gl_version", glVersion},
           {"glsl_version", glslVersion},        {"software_renderer", softwareRenderer},
-          {"image_backend", imageBackend}};
+          {"robust_context", robustContext},    {"image_backend", imageBackend}};
 }
 
 nlohmann::json ResourceStats::toJson() const {

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "context/container_hints.hpp"
 #include "gl/gl_api.hpp"
 #include "lgh/error.hpp"
 
@@ -48,7 +49,7 @@ vk::ShadowTracer* ShadowDevice::tracer() {
         info.deviceName, info.driverName, info.rayQuery, info.rayTracingPipeline,
         info.externalMemoryFd, info.externalSemaphoreFd, info.createMs);
   } catch (const Error& error) {
-    reason_ = error.message();
+    reason_ = error.message() + vulkanDriverHints();
     spdlog::warn("shadows: unavailable: {}", reason_);
   }
   return tracer_.get();
