@@ -59,7 +59,7 @@ int serve(const DaemonConfig& config) {
   ShutdownSupervisor::blockSignals();
   Metrics metrics;
   RenderQueue queue({config.rendererOptions(), static_cast<std::size_t>(config.queueDepth),
-                     config.testRenderDelay},
+                     config.testRenderDelay, config.watchdog},
                     metrics);
   JobStore jobs(config.jobs, queue);
   HttpServer server;
@@ -78,7 +78,9 @@ int serve(const DaemonConfig& config) {
   std::atomic<bool> listenReturned = false;
   ShutdownSupervisor supervisor;
   supervisor.start([&] { shutdownSequence(config, queue, jobs, server, listenReturned); });
-  queue.start([&supervisor](const std::string& reason) { supervisor.requestStop(1, reason); });
+  queue.start([&supervisor](int exitCode, const std::string& reason) {
+    supervisor.requestStop(exitCode, reason);
+  });
   jobs.start();
   server.listen_after_bind();
   listenReturned = true;
@@ -86,7 +88,9 @@ int serve(const DaemonConfig& config) {
   supervisor.join();
 
   jobs.stop();  // after a fatal context failure no shutdown sequence ran
-  if (!queue.stop(kRenderThreadStopWait)) {
+  // A hung render thread will not end: do not wait for it.
+  const bool hung = supervisor.exitCode() == kExitRenderHung;
+  if (!queue.stop(hung ? std::chrono::seconds(0) : kRenderThreadStopWait)) {
     logging::event(spdlog::level::critical, "render_thread_stuck",
                    {{"note", "exiting without releasing the GL context"}});
     spdlog::default_logger()->flush();

@@ -1,10 +1,13 @@
 // A GPU reset while serving (simulated: LGH_DEBUG_CONTEXT_LOSS_AFTER makes the renderer report a
 // lost context after N frames): the render that meets it fails with 503, the daemon makes its
 // renderer again (not ready meanwhile), and the next render is the golden image again.
+// A render thread stuck in a driver call (simulated by --test-render-delay-ms): the watchdog
+// answers, and lghd exits 3 for its supervisor to start a fresh process.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <thread>
 
 #include "daemon_process.hpp"
@@ -58,6 +61,27 @@ TEST(HttpRecovery, ALostContextFailsOneRenderAndTheDaemonRecovers) {
   EXPECT_LE(errorAgainstGolden(again->body), 0.5)
       << "the recovered renderer draws the golden image";
   EXPECT_NE(daemon.log().find("renderer_reset"), std::string::npos);
+}
+
+TEST(HttpRecovery, AHungRenderMakesTheDaemonExitForItsSupervisor) {
+  DaemonProcess daemon(
+      {"--test-render-delay-ms", "4000", "--watchdog-seconds", "0.5", "--grace-seconds", "30"});
+  auto http = daemon.client();
+  httplib::Headers headers{{"X-Lgh-Deadline-Ms", "300"}};
+  const auto start = std::chrono::steady_clock::now();
+  const auto stuck = http->Post("/v1/render", headers, kGoldenRequest, "application/json");
+  ASSERT_TRUE(stuck);
+  EXPECT_EQ(stuck->status, 504) << stuck->body;
+  // The watchdog fires 0.5 s past the deadline; lghd does not wait out the grace for a render
+  // that cannot end, nor the render thread.
+  bool exited = false;
+  while (!exited && std::chrono::steady_clock::now() - start < std::chrono::seconds(3)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    exited = daemon.exited();
+  }
+  ASSERT_TRUE(exited) << daemon.log();
+  EXPECT_EQ(daemon.stop(SIGTERM, std::chrono::milliseconds(0)), 3);
+  EXPECT_NE(daemon.log().find("render_hung"), std::string::npos) << daemon.log();
 }
 
 }  // namespace
