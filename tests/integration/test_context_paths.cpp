@@ -92,6 +92,18 @@ TEST(ContextPaths, OsmesaReportsItsPathAndGl45) {
   EXPECT_EQ(result.device.contextPath, "osmesa");
 }
 
+// Mesa's EGL gives a robust context with reset notification (through EGL 1.5's attributes, the
+// ones NVIDIA's EGL accepts too); OSMesa has no way to ask for one.
+TEST(ContextPaths, EglContextsAreRobustOsmesaIsNot) {
+  for (const auto backend : {lgh::ContextBackend::Surfaceless, lgh::ContextBackend::OSMesa}) {
+    lgh::RendererOptions options;
+    options.backend = backend;
+    lgh::Renderer renderer(options);
+    EXPECT_EQ(renderer.device().robustContext, backend != lgh::ContextBackend::OSMesa)
+        << renderer.device().contextPath;
+  }
+}
+
 TEST(ContextPaths, EachContextOwnsItsFunctionTable) {
   auto surfaceless = lgh::GlContext::create([] {
     lgh::RendererOptions options;
