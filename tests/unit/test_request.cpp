@@ -508,7 +508,8 @@ TEST(RequestParse, EnumSpellings) {
 
 TEST(RequestParse, SceneSources) {
   RenderRequest request = parseText(R"({"scene": {"demo": true}})");
-  EXPECT_EQ(request.scene.kind, SceneSource::Kind::Demo);
+  EXPECT_EQ(request.scene.kind, SceneSource::Kind::Builtin);
+  EXPECT_EQ(request.scene.builtin, BuiltinScene::Demo);
 
   // "glTF" + version 2 + length 12: a GLB header.
   request = parseText(R"({"scene": {"glb_base64": "Z2xURgIAAAAMAAAA"}})");

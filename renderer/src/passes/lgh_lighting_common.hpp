@@ -35,6 +35,11 @@ struct LghLightingParams {
 
 int interleaveFactor(InterleaveMode mode);
 
+// The seed of a frame's shadow-sample random numbers (the reservoir, its jitter, the direct
+// lights' soft-shadow jitter): settings.seed for frame 0, a hash of (seed, frame) for the others,
+// so that accumulated frames carry independent noise.
+std::uint32_t samplingSeed(const LghSettings& settings);
+
 // The hierarchy as LghBuilder leaves it on the GPU.
 struct LghHierarchyBuffers {
   GLuint gridLights = 0;

@@ -8,6 +8,7 @@
 #include "core/stopwatch.hpp"
 #include "gl/gl_api.hpp"
 #include "scene/asset_path.hpp"
+#include "scene/atrium_scene.hpp"
 #include "scene/demo_scene.hpp"
 #include "scene/gltf/gltf_loader.hpp"
 
@@ -33,8 +34,10 @@ SceneCache::SceneCache(const RendererOptions& options) : options_(options) {
 
 std::string SceneCache::keyFor(const SceneSource& source) const {
   switch (source.kind) {
-    case SceneSource::Kind::Demo:
-      return "demo";
+    case SceneSource::Kind::Builtin:
+      return source.builtin == BuiltinScene::Demo
+                 ? "demo"
+                 : "builtin:" + std::string(enumName(source.builtin));
     case SceneSource::Kind::InlineGlb:
       return fmt::format("glb:{:016x}:{}", fnv1a(source.glbBytes), source.glbBytes.size());
     case SceneSource::Kind::UploadedGltf: {
@@ -64,8 +67,8 @@ Scene SceneCache::load(const SceneSource& source) const {
   limits.maxTriangles = options_.maxTriangles;
   limits.maxTextureSize = options_.maxTextureSize;
   switch (source.kind) {
-    case SceneSource::Kind::Demo:
-      return makeDemoScene();
+    case SceneSource::Kind::Builtin:
+      return source.builtin == BuiltinScene::Atrium ? makeAtriumScene() : makeDemoScene();
     case SceneSource::Kind::InlineGlb:
       return loadGlbBytes(source.glbBytes,
                           source.displayName.empty() ? "inline.glb" : source.displayName, limits);
