@@ -2,8 +2,9 @@
 // Light paths, one bounce: one invocation per path resolves its ray's closest hit into a surface
 // point, leaves a VPL there with the path's flux times the diffuse albedo (isotropic over the
 // hemisphere the light came from: I = flux x albedo / (2 pi)), and, before the last bounce, sends
-// the path on in a cosine-weighted direction with its flux times the albedo. A path that missed
-// (or died) leaves a dark VPL and no ray. docs/GI.md.
+// the path on in a cosine-weighted direction with its flux times the albedo. A path that missed,
+// died, or met the back of a single-sided surface (absorbed) leaves a dark VPL and no ray.
+// docs/GI.md.
 // Inputs: the closest hits, the paths' state, the scene's triangles and materials, the source
 // table. Outputs: the bounce's VPL slot, the next rays, the paths' state.
 
@@ -56,16 +57,22 @@ void main() {
   }
   vec3 direction = rays[2u * path + 1u].xyz;
   HitSurface surface = resolveHit(hit, direction);
+  if (surface.backFace) {
+    endPath(path);
+    return;
+  }
   vec3 flux = state.rgb;
   if (uBounce == 1u) flux *= giFirstHitWeight(floatBitsToUint(state.w), hit.t * length(direction));
-  vec3 position = surface.position + surface.geometricNormal * uSurfaceOffset;
   vec3 reflected = flux * surface.albedo;
-  bool valid = !any(isinf(reflected)) && !any(isnan(reflected)) && !any(isnan(position));
+  bool valid = !any(isinf(reflected)) && !any(isnan(reflected)) && !any(isnan(surface.position));
   if (!valid || !any(greaterThan(reflected, vec3(0.0)))) {
     endPath(path);
     return;
   }
-  writeVpl(path, position, reflected / (2.0 * PI));
+  // On the surface itself: an isotropic VPL lifted off its surface lights that surface at grazing
+  // angles, and a plane of them lights it with 2 pi sigma I however small the lift (docs/GI.md).
+  writeVpl(path, surface.position, reflected / (2.0 * PI));
+  vec3 position = surface.position + surface.geometricNormal * uSurfaceOffset;
   if (uLastBounce != 0u) return;
   uint seed = giPathSeed(uSeed, path);
   vec3 next = giCosineDirection(surface.normal, vec2(giRandom(seed, uBounce, 0u),

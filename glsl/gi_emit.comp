@@ -33,7 +33,7 @@ void main() {
                 giRandom(seed, 0u, 4u));
   vec2 v = vec2(giRandom(seed, 0u, 5u), giRandom(seed, 0u, 6u));
   GiEmission emission = giEmit(source, 1.0 / float(uPathCount), u, v);
-  vec3 origin = emission.origin;
+  vec3 origin = emission.origin;  // the emission VPL lies on the triangle, the ray starts off it
   if (emission.fromTriangle) origin += emission.normal * uSurfaceOffset;
   bool valid = !any(isinf(emission.flux)) && !any(isnan(emission.flux));
   vec3 flux = valid ? max(emission.flux, vec3(0.0)) : vec3(0.0);
@@ -43,7 +43,7 @@ void main() {
   if (uEmissionSlots == 1u) {
     // A Lambertian emitter's power leaves one hemisphere: isotropic over it, I = flux / (2 pi).
     PointLight vpl;
-    vpl.positionPad = vec4(origin, 0.0);
+    vpl.positionPad = vec4(emission.origin, 0.0);
     vpl.intensityPad = vec4(emission.fromTriangle ? flux / (2.0 * PI) : vec3(0.0), 0.0);
     vpls[path] = vpl;
   }

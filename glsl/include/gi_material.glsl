@@ -14,7 +14,7 @@
 struct GiMaterial {
   vec4 baseColorFactor;
   vec4 emission;           // rgb: emissive factor x the mean of the emissive texture (linear)
-  vec4 params;             // x: metallic factor, y: roughness factor
+  vec4 params;             // x: metallic factor, y: roughness factor, z: 1 double-sided
   ivec4 baseColorTexture;  // x: layer of uGiAlbedo (-1: none), y: texCoord, z: wrapS, w: wrapT
 };
 

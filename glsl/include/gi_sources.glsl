@@ -28,11 +28,29 @@ layout(std430, binding = LGH_BIND_GI_LIGHTS) readonly buffer GiFrameLights { Lig
 
 uniform uint uSourceCount;
 uniform vec4 uSceneSphere;  // xyz: centre, w: radius of the scene's bounding sphere
+uniform vec3 uSceneMin;     // the scene's bounding box
+uniform vec3 uSceneMax;
 
-// Directional lights shine through a disk of the scene's radius, this far upstream of its centre
-// (in radii): outside the scene, so every path starts in the open.
+// Directional lights shine onto the scene's bounding box: their paths start on the faces of the box
+// that face the light (by projected area), moved this far upstream (in sphere radii) so that every
+// path starts in the open.
 const float GI_SUN_DISTANCE = 2.0;
 const float GI_FAR = 1e30;
+
+// A point on the bounding box's faces that face `direction`, uniform over their projection.
+vec3 giBoxEntry(vec3 direction, vec3 u) {
+  vec3 size = max(uSceneMax - uSceneMin, vec3(1e-6));
+  vec3 projected = abs(direction) * vec3(size.y * size.z, size.x * size.z, size.x * size.y);
+  float total = projected.x + projected.y + projected.z;
+  float pick = u.z * total;
+  int axis = pick < projected.x ? 0 : (pick < projected.x + projected.y ? 1 : 2);
+  vec3 point = uSceneMin + size * vec3(u.x, u.y, 0.0);
+  if (axis == 0) point = uSceneMin + size * vec3(0.0, u.x, u.y);
+  if (axis == 1) point = uSceneMin + size * vec3(u.x, 0.0, u.y);
+  // The face whose outward normal points against the light.
+  if (direction[axis] < 0.0) point[axis] = uSceneMax[axis];
+  return point;
+}
 
 uint giPickSource(float u) {
   uint low = 0u;
@@ -85,12 +103,8 @@ GiEmission giEmit(uint index, float pathShare, vec4 u, vec2 v) {
   int type = giLightType(light);
   if (type == LIGHT_DIRECTIONAL) {
     vec3 direction = normalize(light.directionRange.xyz);
-    vec3 t, b;
-    giBasis(direction, t, b);
-    float r = uSceneSphere.w * sqrt(u.x);
-    float phi = 2.0 * PI * u.y;
-    emission.origin = uSceneSphere.xyz - direction * (GI_SUN_DISTANCE * uSceneSphere.w) +
-                      r * (cos(phi) * t + sin(phi) * b);
+    emission.origin = giBoxEntry(direction, vec3(u.xy, v.y)) -
+                      direction * (GI_SUN_DISTANCE * uSceneSphere.w);
     emission.direction = direction;
     return emission;
   }
@@ -114,6 +128,47 @@ float giFirstHitWeight(uint index, float distance) {
   Light light = giLights[source.info.y];
   if (giLightType(light) == LIGHT_DIRECTIONAL) return 1.0;
   return distanceAttenuation(light, distance) * distance * distance;
+}
+
+// ---- next-event estimation (the path-traced reference) ------------------------------------------
+
+struct GiLightSample {
+  vec3 direction;  // unit, from the receiver to the sample
+  float distance;  // to the sample; GI_FAR for a light at infinity
+  vec3 incident;   // what multiplies BRDF x cos at the receiver, over the sample's probability
+  bool area;       // from an emissive triangle
+};
+
+// One sample of the light arriving at `x`: a source picked by power (`pick`), a point on it
+// (`u`), its light as the direct lighting computes it (analytic lights: include/lights.glsl's
+// incidentLight) or as a Lambertian emitter (triangles: L cos_y A / d^2).
+GiLightSample giSampleLight(vec3 x, float pick, vec2 u) {
+  uint index = giPickSource(pick);
+  float probability = max(giSourceProbability(index), 1e-30);
+  GiSource source = giSources[index];
+  GiLightSample light;
+  light.area = source.info.x == GI_SOURCE_TRIANGLE;
+  if (light.area) {
+    vec2 b = giTriangleBarycentrics(u);
+    vec3 y = source.vertex0.xyz + b.x * source.edge1.xyz + b.y * source.edge2.xyz;
+    vec3 toY = y - x;
+    float d2 = max(dot(toY, toY), 1e-30);
+    light.distance = sqrt(d2);
+    light.direction = toY / light.distance;
+    float cosY = dot(source.normal.xyz, -light.direction);
+    if (source.info.z != 0) cosY = abs(cosY);
+    light.incident = cosY > 0.0 ? source.radiance.rgb * (cosY * source.vertex0.w / (d2 * probability))
+                                : vec3(0.0);
+    return light;
+  }
+  Light analytic = giLights[source.info.y];
+  vec3 toLight;
+  light.incident = incidentLight(analytic, x, toLight) / probability;
+  light.direction = toLight;
+  light.distance = giLightType(analytic) == LIGHT_DIRECTIONAL
+                       ? GI_FAR
+                       : length(analytic.positionType.xyz - x);
+  return light;
 }
 
 #endif

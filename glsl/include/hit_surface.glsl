@@ -25,7 +25,7 @@ struct HitGeometry {  // 16 bytes: one primitive with triangles
 struct HitInstance {  // 144 bytes
   mat4 world;
   mat4 normalWorld;  // inverse transpose of world
-  uvec4 geometries;  // x: its mesh's first geometry, y: their count
+  uvec4 geometries;  // x: its mesh's first geometry, y: their count, z: 1 mirrored (det < 0)
 };
 
 layout(std430, binding = LGH_BIND_GI_VERTICES) readonly buffer HitVertices {
@@ -46,6 +46,10 @@ struct HitSurface {
   vec4 baseColor;
   vec3 albedo;           // diffuse albedo (include/gi_material.glsl)
   vec3 emission;
+  // The ray met the back of a single-sided surface: glTF draws no back faces, and light that
+  // reaches one is absorbed (else the sunlit top of a thin roof would light the room below
+  // through it: a VPL lies on its surface, and a shadow ray ends just short of it).
+  bool backFace;
 };
 
 // `direction`: the ray's direction (any length).
@@ -65,6 +69,9 @@ HitSurface resolveHit(HitRecord hit, vec3 direction) {
   surface.position = b.x * p0 + b.y * p1 + b.z * p2;
   vec3 crossed = cross(p1 - p0, p2 - p0);
   vec3 ng = dot(crossed, crossed) > 0.0 ? normalize(crossed) : -normalize(direction);
+  // glTF: counter-clockwise is the front, in world space; a mirroring transform swaps the sides.
+  bool counterClockwiseSide = dot(ng, direction) < 0.0;
+  bool front = counterClockwiseSide != (instance.geometries.z != 0u);
   if (dot(ng, direction) > 0.0) ng = -ng;
   vec3 objectNormal = b.x * v0.normal.xyz + b.y * v1.normal.xyz + b.z * v2.normal.xyz;
   vec3 n = mat3(instance.normalWorld) * objectNormal;
@@ -76,6 +83,7 @@ HitSurface resolveHit(HitRecord hit, vec3 direction) {
   vec4 uv = b.x * v0.uv + b.y * v1.uv + b.z * v2.uv;
   vec4 color = b.x * v0.color + b.y * v1.color + b.z * v2.color;
   GiMaterial material = giMaterials[geometry.material];
+  surface.backFace = !front && material.params.z == 0.0;
   surface.baseColor = giBaseColor(material, uv.xy, uv.zw, color);
   surface.albedo = giDiffuseAlbedo(material, surface.baseColor);
   surface.emission = material.emission.rgb;

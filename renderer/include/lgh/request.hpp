@@ -175,6 +175,9 @@ struct LghSettings {
   InterleaveMode interleave = InterleaveMode::None;
   LightingPath path = LightingPath::Auto;
   int shadowSamples = 4;  // k, 1..8
+  // Jitter of the shadow samples' positions, 0..1 of the paper's (a box with the grid light's
+  // positional variance), folded to the receiver's side; 0: rays to the illumination centres.
+  float shadowJitter = 0.0F;
   bool sampleS1 = false;  // include S1 grid lights in shadow sampling
   bool lockedReservoir = false;
   // Index of a frame in an accumulated sequence: mixed into the shadow samples' random numbers so

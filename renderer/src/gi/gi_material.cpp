@@ -12,7 +12,8 @@ GiMaterialGpu packGiMaterial(const Material& material, int baseColorLayer,
   GiMaterialGpu packed;
   packed.baseColorFactor = material.baseColorFactor;
   packed.emission = glm::vec4(emittedRadiance(material, emissiveTextureMean), 0.0F);
-  packed.params = glm::vec4(material.metallicFactor, material.roughnessFactor, 0.0F, 0.0F);
+  packed.params = glm::vec4(material.metallicFactor, material.roughnessFactor,
+                            material.doubleSided ? 1.0F : 0.0F, 0.0F);
   const TextureRef& texture = material.baseColorTexture;
   if (baseColorLayer >= 0) {
     packed.baseColorTexture = glm::ivec4(baseColorLayer, texture.texCoord == 1 ? 1 : 0,

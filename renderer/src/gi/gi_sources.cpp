@@ -11,7 +11,7 @@ double luminance(const glm::vec3& rgb) { return 0.2126 * rgb.r + 0.7152 * rgb.g 
 
 }  // namespace
 
-glm::vec3 lightPower(const LightDesc& light, float sceneRadius) {
+glm::vec3 lightPower(const LightDesc& light, const Bounds& sceneBounds) {
   const glm::vec3 emitted = glm::max(
       glm::vec3(light.color[0], light.color[1], light.color[2]) * light.intensity, glm::vec3(0.0F));
   switch (light.type) {
@@ -19,19 +19,26 @@ glm::vec3 lightPower(const LightDesc& light, float sceneRadius) {
       return 4.0F * glm::pi<float>() * emitted;
     case LightType::Spot:
       return 2.0F * glm::pi<float>() * (1.0F - std::cos(light.outerConeAngle)) * emitted;
-    case LightType::Directional:
-      return glm::pi<float>() * sceneRadius * sceneRadius * emitted;
+    case LightType::Directional: {
+      if (sceneBounds.empty()) return glm::vec3(0.0F);
+      const glm::vec3 size = glm::max(sceneBounds.size(), glm::vec3(1e-6F));
+      const glm::vec3 d = glm::abs(
+          glm::normalize(glm::vec3(light.direction[0], light.direction[1], light.direction[2])));
+      const float projected = d.x * size.y * size.z + d.y * size.x * size.z + d.z * size.x * size.y;
+      return projected * emitted;
+    }
   }
   return glm::vec3(0.0F);
 }
 
 GiSourceTable buildGiSources(const std::vector<LightDesc>& lights,
-                             const std::vector<EmissiveTriangle>& triangles, float sceneRadius) {
+                             const std::vector<EmissiveTriangle>& triangles,
+                             const Bounds& sceneBounds) {
   GiSourceTable table;
   for (std::size_t i = 0; i < lights.size(); ++i) {
     GiSourceGpu source;
     source.info = glm::ivec4(kGiSourceLight, static_cast<int>(i), 0, 0);
-    source.power = glm::vec4(lightPower(lights[i], sceneRadius), 0.0F);
+    source.power = glm::vec4(lightPower(lights[i], sceneBounds), 0.0F);
     if (luminance(glm::vec3(source.power)) > 0.0) table.sources.push_back(source);
   }
   for (const EmissiveTriangle& triangle : triangles) {

@@ -36,11 +36,13 @@ struct GiSourceTable {
 };
 
 // The emitted power of an analytic light: point 4 pi I, spot 2 pi (1 - cos outer) I (the cone it
-// shines into), directional E pi R^2 (the scene's bounding disk); I and E are colour x intensity.
-glm::vec3 lightPower(const LightDesc& light, float sceneRadius);
+// shines into), directional E times the projected area of the scene's bounding box (what its
+// paths start on); I and E are colour x intensity.
+glm::vec3 lightPower(const LightDesc& light, const Bounds& sceneBounds);
 
 // `lights`: the frame's lights in the order of its light buffer.
 GiSourceTable buildGiSources(const std::vector<LightDesc>& lights,
-                             const std::vector<EmissiveTriangle>& triangles, float sceneRadius);
+                             const std::vector<EmissiveTriangle>& triangles,
+                             const Bounds& sceneBounds);
 
 }  // namespace lgh

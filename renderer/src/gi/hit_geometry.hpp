@@ -39,7 +39,7 @@ static_assert(sizeof(HitGeometryGpu) == 16, "HitGeometryGpu must match HitGeomet
 struct HitInstanceGpu {  // HitInstance, 144 bytes
   glm::mat4 world{1.0F};
   glm::mat4 normalWorld{1.0F};
-  glm::uvec4 geometries{0U};  // x: first geometry of its mesh, y: their count
+  glm::uvec4 geometries{0U};  // x: first geometry of its mesh, y: their count, z: 1 mirrored
 };
 static_assert(sizeof(HitInstanceGpu) == 144, "HitInstanceGpu must match HitInstance (std430)");
 

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "frame_report.hpp"
-#include "gi/gi_sources.hpp"
+#include "gi/gi_source_buffer.hpp"
 #include "gi/gi_tracing.hpp"
 #include "gl/gl_objects.hpp"
 #include "gl/gpu_timer.hpp"
@@ -64,18 +64,20 @@ class VplTracer {
   void collectTimings(GiTracing& tracing, TimingTable& table);
 
  private:
-  void uploadSources(const GiSourceTable& table);
   void clearSlots(GLuint vpls, int from, int count);
 
   gl::Program emit_;
   gl::Program bounce_;
-  gl::SizedBuffer sources_;
-  std::vector<GiSourceGpu> uploaded_;
+  GiSourceBuffer sources_;
   gl::SizedBuffer paths_;
   double transferMs_ = 0.0;
   double asBuildMs_ = -1.0;
   bool traced_ = false;
 };
+
+// Work groups of 64 for `items` invocations, 2D beyond 65535 groups (gi_*.comp find their
+// index as (group.y * groups.x + group.x) * 64 + local.x).
+void dispatchGi(std::uint32_t items);
 
 // Inserts `row` after the row named `parent` and the rows nested in it (at the parent's depth
 // + 1); appends it when there is no such parent.

@@ -121,7 +121,7 @@ void LghFrameLighting::run(const LghSettings& settings, const CachedScene& cache
   if (probe != nullptr) {
     probe->path = path;
     probe->vplLayout = vplLayout_;
-    readProbe(camera, frame, timer, *probe);
+    readProbe(camera, frame, timer, *probe, cached, lightPaths ? gi : nullptr);
     if (probe->bruteForce) {
       report.decide("reference", probe->shadowedReference ? "brute-force-shadowed" : "brute-force");
     }
@@ -202,7 +202,15 @@ void LghFrameLighting::light(LightingPath path, const LghLightingParams& params,
 }
 
 void LghFrameLighting::readProbe(const CameraMatrices& camera, FrameTargets& frame,
-                                 gl::GpuTimer& timer, LghFrameProbe& probe) {
+                                 gl::GpuTimer& timer, LghFrameProbe& probe,
+                                 const CachedScene& scene, const LghGiInputs* gi) {
+  if (probe.pathTracedSamples > 0 && gi != nullptr) {
+    if (!pathTracer_) pathTracer_ = std::make_unique<PathTracedReference>();
+    const PathTracingSettings settings{gi->settings.bounces, probe.pathTracedSamples,
+                                       gi->settings.seed, gi->tracing};
+    probe.pathTraced = pathTracer_->render(
+        settings, {scene, gi->lights, gi->lightBuffer, camera, frame}, gi->tracer);
+  }
   if (probe.bruteForce) {
     gl::ScopedGpuPass pass(timer, "lgh reference");
     const float minDistance = probe.referenceClamp == LghFrameProbe::ReferenceClamp::Hierarchy

@@ -22,6 +22,7 @@
 #include <glm/glm.hpp>
 
 #include "frame_report.hpp"
+#include "gi/path_traced_reference.hpp"
 #include "gi/vpl_tracer.hpp"
 #include "gl/gpu_timer.hpp"
 #include "lightgrid/lgh_builder.hpp"
@@ -49,9 +50,12 @@ struct LghFrameProbe {
   // Shadowed reference: one ray per VPL and pixel (set by the frame when shadowedReference).
   bool shadowedReference = false;
   PointLightVisibility visibility;
+  // The path-traced reference (settings.gi frames only): samples per pixel, 0 for none.
+  int pathTracedSamples = 0;
 
-  FloatImage indirect;   // the LGH lighting, linear, top row first
-  FloatImage reference;  // the brute-force image (bruteForce)
+  FloatImage indirect;    // the LGH lighting, linear, top row first
+  FloatImage reference;   // the brute-force image (bruteForce)
+  FloatImage pathTraced;  // the path-traced reference (pathTracedSamples > 0)
   // Per pixel, GL order (row 0 at the bottom): F, k samples (position, weight), overdraw.
   std::vector<float> reservoirSums;
   std::vector<glm::vec4> shadowSamples;
@@ -124,13 +128,14 @@ class LghFrameLighting {
   void light(LightingPath path, const LghLightingParams& params, const CameraMatrices& camera,
              FrameTargets& frame, gl::GpuTimer& timer);
   void readProbe(const CameraMatrices& camera, FrameTargets& frame, gl::GpuTimer& timer,
-                 LghFrameProbe& probe);
+                 LghFrameProbe& probe, const CachedScene& scene, const LghGiInputs* gi);
 
   LghBuilder builder_;
   gl::SizedBuffer vplBuffer_;
   int vplCount_ = 0;  // this frame's VPLs (slots) in vplBuffer_
   std::optional<VplKey> vplKey_;
   std::unique_ptr<VplTracer> vplTracer_;
+  std::unique_ptr<PathTracedReference> pathTracer_;
   GiTracing* giTracing_ = nullptr;  // of the last frame with light paths
   VplLayout vplLayout_;
   LghLightingTargets targets_;

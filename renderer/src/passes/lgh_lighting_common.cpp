@@ -77,6 +77,7 @@ LghLightingParams LghLightingParams::fromSettings(const LghSettings& settings) {
   params.sampleStartLevel = settings.sampleS1 ? 1 : 2;
   params.samples = std::clamp(settings.shadowSamples, 1, 8);
   params.seed = samplingSeed(settings);
+  params.shadowJitter = settings.shadowJitter;
   params.interleave = interleaveFactor(settings.interleave);
   params.locked = settings.lockedReservoir;
   return params;
@@ -165,6 +166,7 @@ void setLightingUniforms(GLuint program, const LghLightingParams& params,
   setUniform(program, "uSampleStartLevel", params.sampleStartLevel);
   setUniform(program, "uSampleCount", params.samples);
   setUniform(program, "uSeed", static_cast<GLuint>(params.seed));
+  setUniform(program, "uShadowJitter", params.shadowJitter);
   setUniform(program, "uInterleave", targets.interleave);
   auto set2i = [program](const char* name, int x, int y) {
     const GLint location = glGetUniformLocation(program, name);

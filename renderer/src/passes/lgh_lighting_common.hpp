@@ -26,7 +26,8 @@ struct LghLightingParams {
   int sampleStartLevel = 2;  // S1 skipped for shadow sampling unless sampleS1
   int samples = 4;           // k
   std::uint32_t seed = 1;
-  int interleave = 1;  // n: n x n tiles
+  float shadowJitter = 0.0F;  // settings.lgh.shadow_jitter
+  int interleave = 1;         // n: n x n tiles
   bool locked = false;
   bool overdraw = false;  // debug counter (slower: image atomics / stores per pixel)
 

@@ -184,6 +184,7 @@ LghSettings readLgh(const json& object) {
   readEnum(object, "interleave", lgh.interleave);
   readEnum(object, "path", lgh.path);
   read(object, "shadow_samples", lgh.shadowSamples);
+  read(object, "shadow_jitter", lgh.shadowJitter);
   read(object, "sample_s1", lgh.sampleS1);
   read(object, "locked_reservoir", lgh.lockedReservoir);
   read(object, "frame", lgh.frame);

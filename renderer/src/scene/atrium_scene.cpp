@@ -204,16 +204,16 @@ Mesh makeShell() {
   const float l = kHalfLength;
   const float h = kHeight;
   Primitive floor = surface(kFloor);
-  addGrid(floor, {-w, 0, l}, {0, 0, -2 * l}, {2 * w, 0, 0}, 80, 24, 2.0F);
+  addGrid(floor, {-w, 0, l}, {2 * w, 0, 0}, {0, 0, -2 * l}, 24, 80, 2.0F);
   Primitive walls = surface(kPlaster);
-  addGrid(walls, {-w, 0, l}, {0, h, 0}, {0, 0, -2 * l}, 10, 40, 2.0F);  // left, facing +X
-  addGrid(walls, {w, 0, -l}, {0, h, 0}, {0, 0, 2 * l}, 10, 40, 2.0F);   // right, facing -X
-  addGrid(walls, {-w, 0, -l}, {0, h, 0}, {2 * w, 0, 0}, 10, 12, 2.0F);  // far end, facing +Z
-  addGrid(walls, {w, 0, l}, {0, h, 0}, {-2 * w, 0, 0}, 10, 12, 2.0F);   // near end, facing -Z
+  addGrid(walls, {-w, 0, l}, {0, 0, -2 * l}, {0, h, 0}, 40, 10, 2.0F);  // left, facing +X
+  addGrid(walls, {w, 0, -l}, {0, 0, 2 * l}, {0, h, 0}, 40, 10, 2.0F);   // right, facing -X
+  addGrid(walls, {-w, 0, -l}, {2 * w, 0, 0}, {0, h, 0}, 12, 10, 2.0F);  // far end, facing +Z
+  addGrid(walls, {w, 0, l}, {-2 * w, 0, 0}, {0, h, 0}, 12, 10, 2.0F);   // near end, facing -Z
   Primitive ceiling = surface(kCeiling);
   const float s = kSkylightHalfWidth;
-  addGrid(ceiling, {-w, h, l}, {w - s, 0, 0}, {0, 0, -2 * l}, 4, 40, 2.0F);
-  addGrid(ceiling, {s, h, l}, {w - s, 0, 0}, {0, 0, -2 * l}, 4, 40, 2.0F);
+  addGrid(ceiling, {-w, h, l}, {0, 0, -2 * l}, {w - s, 0, 0}, 40, 4, 2.0F);  // facing down
+  addGrid(ceiling, {s, h, l}, {0, 0, -2 * l}, {w - s, 0, 0}, 40, 4, 2.0F);
   return Mesh{"atrium_shell", {floor, walls, ceiling}};
 }
 
@@ -241,10 +241,11 @@ Mesh makeArcades() {
 Mesh makeCloths() {
   Mesh mesh{"cloths", {}};
   const int colors[3] = {kRed, kBlue, kGreen};
+  const float x[3] = {0.0F, 1.6F, -1.6F};
   const float z[3] = {-10.0F, -2.0F, 6.0F};
   for (int k = 0; k < 3; ++k) {
     Primitive cloth = surface(colors[k]);
-    addCloth(cloth, {0.0F, 8.6F, z[k]}, 2.6F, 5.2F, 72, 132, 0.9F * static_cast<float>(k));
+    addCloth(cloth, {x[k], 8.6F, z[k]}, 2.4F, 5.2F, 72, 132, 0.9F * static_cast<float>(k));
     mesh.primitives.push_back(std::move(cloth));
   }
   // The bars the cloths hang from, across the nave between the colonnades.
@@ -359,7 +360,7 @@ LightDesc light(LightType type, const glm::vec3& position, const glm::vec3& dire
 
 std::vector<LightDesc> makeLights() {
   return {
-      light(LightType::Directional, {0, 0, 0}, {-0.42F, -1.0F, -0.28F}, {1.0F, 0.93F, 0.80F}, 6.0F),
+      light(LightType::Directional, {0, 0, 0}, {-0.3F, -1.0F, -0.35F}, {1.0F, 0.93F, 0.80F}, 6.0F),
       light(LightType::Point, {-2.0F, 2.6F, -17.0F}, {0, -1, 0}, {1.0F, 0.75F, 0.45F}, 4.0F),
       light(LightType::Point, {2.0F, 2.6F, -17.0F}, {0, -1, 0}, {1.0F, 0.75F, 0.45F}, 4.0F),
   };
@@ -370,8 +371,8 @@ SceneCamera makeCamera() {
   camera.name = "atrium_camera";
   camera.yfov = 0.9F;
   camera.znear = 0.05F;
-  const glm::vec3 eye(0.0F, 2.2F, 18.5F);
-  const glm::vec3 target(0.0F, 3.6F, -10.0F);
+  const glm::vec3 eye(0.0F, 3.0F, 19.0F);
+  const glm::vec3 target(0.0F, 2.4F, -10.0F);
   camera.world = glm::inverse(glm::lookAt(eye, target, glm::vec3(0, 1, 0)));
   return camera;
 }
