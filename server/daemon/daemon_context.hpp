@@ -1,6 +1,7 @@
 // What every route handler works with: the configuration, the render queue and the metrics.
 #pragma once
 
+#include "benchmark_runner.hpp"
 #include "config.hpp"
 #include "metrics.hpp"
 #include "render_queue.hpp"
@@ -12,6 +13,7 @@ struct DaemonContext {
   lgh::RequestLimits requestLimits;
   RenderQueue& queue;
   Metrics& metrics;
+  BenchmarkRunner* benchmarks = nullptr;  // POST /v1/benchmark; none: 503
 };
 
 }  // namespace lghd

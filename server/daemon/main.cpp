@@ -12,6 +12,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "benchmark_runner.hpp"
 #include "config.hpp"
 #include "daemon_context.hpp"
 #include "logging.hpp"
@@ -34,13 +35,14 @@ void stopListening(httplib::Server& server, const std::atomic<bool>& listenRetur
   if (!listenReturned) server.stop();
 }
 
-void shutdownSequence(const DaemonConfig& config, RenderQueue& queue, httplib::Server& server,
-                      const std::atomic<bool>& listenReturned) {
+void shutdownSequence(const DaemonConfig& config, RenderQueue& queue, BenchmarkRunner& benchmarks,
+                      httplib::Server& server, const std::atomic<bool>& listenReturned) {
   logging::event(spdlog::level::info, "shutdown", {{"grace_ms", config.grace.count()}});
   queue.stopAccepting();
   stopListening(server, listenReturned);
   const bool drained = queue.drain(config.grace);
   logging::event(spdlog::level::info, "drained", {{"all_finished", drained}});
+  benchmarks.stop();
 }
 
 nlohmann::json startupFields(const DaemonConfig& config, int port) {
@@ -61,7 +63,8 @@ int serve(const DaemonConfig& config) {
                      config.testRenderDelay},
                     metrics);
   HttpServer server;
-  DaemonContext context{config, config.requestLimits(), queue, metrics};
+  BenchmarkRunner benchmarks(config.rendererOptions());
+  DaemonContext context{config, config.requestLimits(), queue, metrics, &benchmarks};
   configureServer(server, context);
 
   const int port = bindServer(server, config.host, config.port);
@@ -75,7 +78,7 @@ int serve(const DaemonConfig& config) {
 
   std::atomic<bool> listenReturned = false;
   ShutdownSupervisor supervisor;
-  supervisor.start([&] { shutdownSequence(config, queue, server, listenReturned); });
+  supervisor.start([&] { shutdownSequence(config, queue, benchmarks, server, listenReturned); });
   queue.start([&supervisor](const std::string& reason) { supervisor.requestStop(1, reason); });
   server.listen_after_bind();
   listenReturned = true;
@@ -99,6 +102,9 @@ int serve(const DaemonConfig& config) {
 int main(int argc, char** argv) {
   if (argc == 2 && std::string_view(argv[1]) == lghd::kProbeVulkanFlag) {
     return lghd::printVulkanProbe();
+  }
+  if (argc == 4 && std::string_view(argv[1]) == lghd::kRunBenchmarkFlag) {
+    return lghd::runBenchmarkChild(argv[2], argv[3]);
   }
   lghd::ParsedConfig parsed = lghd::parseConfig(argc, argv);
   if (!parsed.config) return parsed.exitCode;

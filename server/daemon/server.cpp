@@ -21,8 +21,10 @@ namespace {
 // clock is the request's clock.
 thread_local std::optional<Clock::time_point> requestStart;
 
-const std::array<const char*, 7> kRoutes = {
-    "/v1/render", "/v1/thumbnails", "/v1/info", "/healthz", "/readyz", "/metrics", "/openapi.json"};
+const std::array<const char*, 9> kRoutes = {
+    "/v1/render",    "/v1/thumbnails", "/v1/info",
+    "/healthz",      "/readyz",        "/metrics",
+    "/openapi.json", "/v1/benchmark",  "/v1/benchmark/result"};
 
 // A bounded label for metrics: the route, not the raw path.
 std::string routeLabel(const std::string& path) {
@@ -181,6 +183,7 @@ void configureServer(httplib::Server& server, DaemonContext& context) {
   addThumbnailRoutes(server, context);
   addStatusRoutes(server, context);
   addDocumentRoutes(server);
+  addBenchmarkRoutes(server, context);
 }
 
 bool HttpServer::raiseListenBacklog(int backlog) { return ::listen(svr_sock_, backlog) == 0; }
