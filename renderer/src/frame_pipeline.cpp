@@ -1,5 +1,7 @@
 #include "frame_pipeline.hpp"
 
+#include <cmath>
+
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "core/stopwatch.hpp"
@@ -77,7 +79,7 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   }
   const GLuint shadowRatio =
       shadows_.filterLgh(shadowSettings.filterIterations, camera, targets_, timer);
-  if (probe != nullptr && lgh.enabled) finishProbe(shadowRatio, *probe);
+  if (probe != nullptr && lgh.enabled) finishProbe(shadowRatio, camera, *probe);
   {
     gl::ScopedGpuPass pass(timer, "composite");
     compositePass_.run(output, lgh.enabled, shadowRatio, targets_);
@@ -103,8 +105,50 @@ void FramePipeline::prepareProbe(const RenderRequest& request, const CachedScene
   };
 }
 
-void FramePipeline::finishProbe(GLuint shadowRatio, LghFrameProbe& probe) const {
+namespace {
+
+// A texture's texels as floats, top row first (GL's rows run bottom-up).
+template <typename Texel>
+std::vector<Texel> readTopDown(GLuint texture, int width, int height, GLenum format, int channels,
+                               const auto& convert) {
+  std::vector<float> raw(static_cast<std::size_t>(width) * height * channels);
+  glGetTextureImage(texture, 0, format, GL_FLOAT, static_cast<GLsizei>(raw.size() * sizeof(float)),
+                    raw.data());
+  std::vector<Texel> texels(static_cast<std::size_t>(width) * height);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      texels[static_cast<std::size_t>(height - 1 - y) * width + x] =
+          convert(&raw[(static_cast<std::size_t>(y) * width + x) * channels]);
+    }
+  }
+  return texels;
+}
+
+float srgbToLinear(float c) {
+  return c <= 0.04045F ? c / 12.92F : std::pow((c + 0.055F) / 1.055F, 2.4F);
+}
+
+}  // namespace
+
+void FramePipeline::finishProbe(GLuint shadowRatio, const CameraMatrices& camera,
+                                LghFrameProbe& probe) const {
   if (!probe.readBack) return;
+  if (probe.readGBuffer) {
+    const GBufferTargets& g = targets_.gbuffer;
+    const int w = targets_.width;
+    const int h = targets_.height;
+    probe.gbuffer.position =
+        readTopDown<glm::vec4>(g.position.id(), w, h, GL_RGBA, 4,
+                               [](const float* v) { return glm::vec4(v[0], v[1], v[2], v[3]); });
+    probe.gbuffer.normal = readTopDown<glm::vec3>(
+        g.normal.id(), w, h, GL_RGB, 3, [](const float* v) { return glm::vec3(v[0], v[1], v[2]); });
+    // The sRGB target's bytes as stored; the lighting passes sample them decoded.
+    probe.gbuffer.baseColor =
+        readTopDown<glm::vec3>(g.albedo.id(), w, h, GL_RGB, 3, [](const float* v) {
+          return glm::vec3(srgbToLinear(v[0]), srgbToLinear(v[1]), srgbToLinear(v[2]));
+        });
+    probe.gbuffer.cameraPosition = camera.position;
+  }
   const int width = targets_.width;
   const int height = targets_.height;
   probe.shadowRatio = FloatImage{};

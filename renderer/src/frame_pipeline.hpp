@@ -37,7 +37,7 @@ class FramePipeline {
  private:
   // The probe's shadowed reference traces its rays here; its outputs that need the shadows.
   void prepareProbe(const RenderRequest& request, const CachedScene& scene, LghFrameProbe& probe);
-  void finishProbe(GLuint shadowRatio, LghFrameProbe& probe) const;
+  void finishProbe(GLuint shadowRatio, const CameraMatrices& camera, LghFrameProbe& probe) const;
 
  private:
   FrameTargets targets_;

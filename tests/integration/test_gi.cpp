@@ -113,6 +113,45 @@ lgh::Scene sphereRoom(float albedo, int rings, int segments) {
   return scene;
 }
 
+// A white floor of half size 40 at y = 0 and a white cube of half size 0.1 at (0, 10, 0): far
+// from the floor, for the energy check.
+lgh::Scene boxAboveFloor() {
+  lgh::Primitive surfaces;
+  surfaces.material = 0;
+  const auto quad = [&](const glm::vec3& centre, const glm::vec3& u, const glm::vec3& v) {
+    const auto base = static_cast<std::uint32_t>(surfaces.vertices.size());
+    const glm::vec3 n = glm::normalize(glm::cross(u, v));
+    for (const glm::vec2 c :
+         {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
+      lgh::Vertex vertex;
+      vertex.position = centre + c.x * u + c.y * v;
+      vertex.normal = n;
+      surfaces.vertices.push_back(vertex);
+    }
+    for (std::uint32_t i : {0U, 1U, 2U, 0U, 2U, 3U}) surfaces.indices.push_back(base + i);
+  };
+  quad({0, 0, 0}, {0, 0, 40}, {40, 0, 0});  // facing +y
+  const glm::vec3 c(0.0F, 10.0F, 0.0F);
+  const float h = 0.1F;
+  quad(c + glm::vec3(0, h, 0), {0, 0, h}, {h, 0, 0});  // top
+  quad(c - glm::vec3(0, h, 0), {h, 0, 0}, {0, 0, h});  // bottom
+  quad(c + glm::vec3(h, 0, 0), {0, h, 0}, {0, 0, h});  // +x
+  quad(c - glm::vec3(h, 0, 0), {0, 0, h}, {0, h, 0});  // -x
+  quad(c + glm::vec3(0, 0, h), {h, 0, 0}, {0, h, 0});  // +z
+  quad(c - glm::vec3(0, 0, h), {0, h, 0}, {h, 0, 0});  // -z
+  lgh::Scene scene;
+  scene.name = "box above floor";
+  scene.meshes.push_back({"surfaces", {surfaces}});
+  scene.instances.push_back({0, glm::mat4(1.0F)});
+  lgh::Material white;
+  white.baseColorFactor = glm::vec4(0.8F, 0.8F, 0.8F, 1.0F);
+  white.metallicFactor = 0.0F;
+  white.roughnessFactor = 1.0F;
+  scene.materials.push_back(white);
+  scene.computeBounds();
+  return scene;
+}
+
 class GlobalIllumination : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -315,22 +354,25 @@ void printErrors(const std::string& label, const lgh::MaterialErrors& e) {
       100.0 * e.glossyFraction, e.bias, e.diffuseBias);
 }
 
-// The shadowed frame's indirect light against both references: the brute force over the same VPLs
-// (one shadow ray per VPL and pixel; ground truth for the hierarchy and its sampled shadows) and
-// the path tracer (ground truth for the VPLs themselves).
+// The shadowed frame's indirect light against both references on the demo: the brute force over
+// the same VPLs (one shadow ray per VPL and pixel, no clamp; ground truth for the hierarchy and its
+// sampled shadows) and the path tracer (ground truth for the VPLs themselves). The bounds are the
+// documented behaviour (docs/GI.md, "Quality"): the VPLs' brightness matches the path tracer's
+// closely here, and the frame's sampled shadows take some light away (merged grid lights whose
+// centres sit in or behind objects).
 TEST_F(GlobalIllumination, TheFrameAgainstBothReferences) {
-  json body = {{"output", {{"width", 64}, {"height", 48}}},
+  json body = {{"output", {{"width", 48}, {"height", 36}}},
                {"settings",
                 {{"shadows", "on"},
                  {"ambient", 0},
                  {"lgh", {{"alpha", 2}, {"shadow_samples", 4}}},
-                 {"gi", {{"enabled", true}, {"bounces", 2}, {"vpl_count", 12000}}}}}};
+                 {"gi", {{"enabled", true}, {"bounces", 2}, {"vpl_count", 8000}}}}}};
   Frame frame;
   frame.probe.bruteForce = true;
   frame.probe.shadowedReference = true;
   frame.probe.referenceClamp = lgh::LghFrameProbe::ReferenceClamp::Fixed;
   frame.probe.referenceMinDistance = 0.0F;
-  frame.probe.pathTracedSamples = 256;
+  frame.probe.pathTracedSamples = 128;
   const lgh::RenderRequest req = lgh::parseRenderRequest(body);
   lgh::gl::GpuTimer timer;
   pipeline->render(req, *cache->get(req.scene).entry, timer, frame.report, &frame.probe);
@@ -346,6 +388,10 @@ TEST_F(GlobalIllumination, TheFrameAgainstBothReferences) {
   printErrors("LGH frame vs path tracer", toPathTracer);
   printErrors("shadowed brute force vs path tracer", vplsToPathTracer);
   EXPECT_EQ(frame.report.decisions.at("reference"), "brute-force-shadowed");
+  EXPECT_LT(std::fabs(vplsToPathTracer.bias), 0.15);
+  EXPECT_LT(toBruteForce.bias, 0.0);
+  EXPECT_GT(toBruteForce.bias, -0.35);
+  EXPECT_LT(toBruteForce.diffuse.relativeRmse, 0.6);
 }
 
 // Inside a diffuse sphere every surface patch lights every other one alike (the form factor from
@@ -360,7 +406,7 @@ TEST_F(GlobalIllumination, SphereRoomMatchesTheAnalyticRadiance) {
   constexpr int kBounces = 2;
   auto room = cached(sphereRoom(kAlbedo, 48, 96));
   json body = {
-      {"output", {{"width", 32}, {"height", 24}}},
+      {"output", {{"width", 24}, {"height", 18}}},
       {"camera",
        {{"type", "look_at"},
         {"position", {0.0, 1.0, 0.3}},
@@ -371,13 +417,13 @@ TEST_F(GlobalIllumination, SphereRoomMatchesTheAnalyticRadiance) {
       {"settings",
        {{"shadows", "on"},
         {"ambient", 0},
-        {"gi", {{"enabled", true}, {"bounces", kBounces}, {"vpl_count", 20000}}}}}};
+        {"gi", {{"enabled", true}, {"bounces", kBounces}, {"vpl_count", 12000}}}}}};
   Frame frame;
   frame.probe.bruteForce = true;
   frame.probe.shadowedReference = true;
   frame.probe.referenceClamp = lgh::LghFrameProbe::ReferenceClamp::Fixed;
   frame.probe.referenceMinDistance = 0.0F;
-  frame.probe.pathTracedSamples = 256;
+  frame.probe.pathTracedSamples = 128;
   lgh::gl::GpuTimer timer;
   pipeline->render(lgh::parseRenderRequest(body), *room, timer, frame.report, &frame.probe);
   double irradiance = 0.0;
@@ -397,106 +443,61 @@ TEST_F(GlobalIllumination, SphereRoomMatchesTheAnalyticRadiance) {
   EXPECT_GT(meanLuminance(frame.probe.shadowRatio), 0.995);
 }
 
-TEST_F(GlobalIllumination, DISABLED_Explore) {
-  const char* envScene = std::getenv("GI_SCENE");
-  const std::string sceneName = envScene ? envScene : "demo";
-  const int vpls = std::getenv("GI_VPLS") ? std::atoi(std::getenv("GI_VPLS")) : 12000;
-  const int bounces = std::getenv("GI_BOUNCES") ? std::atoi(std::getenv("GI_BOUNCES")) : 2;
-  for (const float alpha : {1.0F, 2.0F, 4.0F}) {
-    for (const float clamp : {-1.0F, 0.0F, 0.02F, 0.05F}) {
-      json body = {{"output", {{"width", 96}, {"height", 72}}},
-                   {"scene", {{"builtin", sceneName}}},
-                   {"settings",
-                    {{"shadows", "off"},
-                     {"ambient", 0},
-                     {"lgh", {{"alpha", alpha}, {"shadow_samples", 4}}},
-                     {"gi", {{"enabled", true}, {"bounces", bounces}, {"vpl_count", vpls}}}}}};
-      Frame frame;
-      frame.probe.bruteForce = true;
-      frame.probe.referenceClamp = clamp < 0 ? lgh::LghFrameProbe::ReferenceClamp::Hierarchy
-                                             : lgh::LghFrameProbe::ReferenceClamp::Fixed;
-      frame.probe.referenceMinDistance = clamp;
-      const lgh::RenderRequest req = lgh::parseRenderRequest(body);
-      lgh::gl::GpuTimer timer;
-      pipeline->render(req, *cache->get(req.scene).entry, timer, frame.report, &frame.probe);
-      std::cout << fmt::format(
-          "alpha {} clamp {} levels {} h1 {:.4f}: ", alpha, clamp, frame.probe.levels.levelCount,
-          frame.probe.levels.levels.empty() ? 0.0F : frame.probe.levels.levels[0].cellSize);
-      printErrors("unshadowed LGH vs BF",
-                  lgh::compareByMaterial(frame.probe.indirect, frame.probe.reference,
-                                         frame.probe.metallicRoughness));
+// The hierarchy conserves energy: far from its lights (the VPLs a narrow spot leaves on the top of
+// a small box, 10 m and more from every receiver), the LGH equals the brute force over the same
+// VPLs within 1e-3, pixel by pixel (what remains is of second order in the box's size over the
+// distance).
+TEST_F(GlobalIllumination, FarFromItsLightsTheHierarchyEqualsTheBruteForce) {
+  auto scene = cached(boxAboveFloor());
+  json body = {{"output", {{"width", 48}, {"height", 32}}},
+               {"camera",
+                {{"type", "look_at"},
+                 {"position", {0.0, 4.0, 16.0}},
+                 {"target", {0.0, 0.0, 0.0}},
+                 {"yfov", 60}}},
+               {"lights",
+                {{{"type", "spot"},
+                  {"position", {0.0, 11.0, 0.0}},
+                  {"direction", {0.0, -1.0, 0.0}},
+                  {"intensity", 20000},
+                  {"inner_cone_angle", 0.02},
+                  {"outer_cone_angle", 0.08}}}},
+               {"use_default_lights", false},
+               {"settings",
+                {{"shadows", "off"},
+                 {"ambient", 0},
+                 {"gi", {{"enabled", true}, {"bounces", 1}, {"vpl_count", 4000}}}}}};
+  Frame frame;
+  frame.probe.bruteForce = true;
+  frame.probe.readGBuffer = true;
+  frame.probe.readVpls = true;
+  lgh::gl::GpuTimer timer;
+  pipeline->render(lgh::parseRenderRequest(body), *scene, timer, frame.report, &frame.probe);
+  ASSERT_GT(litVpls(frame), 900U) << "the spot's paths land on the box";
+  double sumLgh = 0.0;
+  double sumReference = 0.0;
+  double worst = 0.0;
+  int far = 0;
+  for (std::size_t p = 0; p < frame.probe.gbuffer.position.size(); ++p) {
+    const glm::vec4 position = frame.probe.gbuffer.position[p];
+    if (position.w < 0.5F || glm::distance(glm::vec3(position), glm::vec3(0, 10, 0)) < 10.0F) {
+      continue;
     }
+    const float lgh = frame.probe.indirect.rgba[p * 4];
+    const float reference = frame.probe.reference.rgba[p * 4];
+    if (!(reference > 0.0F)) continue;
+    sumLgh += lgh;
+    sumReference += reference;
+    worst = std::max(worst, std::fabs(static_cast<double>(lgh) / reference - 1.0));
+    ++far;
   }
-}
-
-TEST_F(GlobalIllumination, DISABLED_ExplorePathTracer) {
-  const char* envScene = std::getenv("GI_SCENE");
-  const std::string sceneName = envScene ? envScene : "demo";
-  const int vpls = std::getenv("GI_VPLS") ? std::atoi(std::getenv("GI_VPLS")) : 12000;
-  const int bounces = std::getenv("GI_BOUNCES") ? std::atoi(std::getenv("GI_BOUNCES")) : 2;
-  lgh::FloatImage pt;
-  for (const float clamp : {-1.0F, 0.05F, 0.02F, 0.01F}) {
-    json body = {{"output", {{"width", 64}, {"height", 48}}},
-                 {"scene", {{"builtin", sceneName}}},
-                 {"settings",
-                  {{"shadows", "on"},
-                   {"ambient", 0},
-                   {"lgh",
-                    {{"alpha", 2},
-                     {"shadow_samples", std::getenv("GI_K") ? std::atoi(std::getenv("GI_K")) : 4},
-                     {"sample_s1", std::getenv("GI_S1") != nullptr},
-                     {"shadow_jitter",
-                      std::getenv("GI_JITTER") ? std::atof(std::getenv("GI_JITTER")) : 0.0}}},
-                   {"gi", {{"enabled", true}, {"bounces", bounces}, {"vpl_count", vpls}}}}}};
-    if (std::getenv("GI_FILTER"))
-      body["settings"]["shadow_filter_iterations"] = std::atoi(std::getenv("GI_FILTER"));
-    if (std::getenv("GI_SURFACE")) {
-      body["settings"].erase("gi");
-      body["settings"]["lgh"]["vpl_count"] = vpls;
-      body["settings"]["lgh"]["enabled"] = true;
-    }
-    Frame frame;
-    frame.probe.bruteForce = true;
-    frame.probe.shadowedReference = true;
-    frame.probe.referenceClamp = clamp < 0 ? lgh::LghFrameProbe::ReferenceClamp::Hierarchy
-                                           : lgh::LghFrameProbe::ReferenceClamp::Fixed;
-    frame.probe.referenceMinDistance = clamp;
-    if (pt.width == 0) frame.probe.pathTracedSamples = 512;
-    const lgh::RenderRequest req = lgh::parseRenderRequest(body);
-    lgh::gl::GpuTimer timer;
-    pipeline->render(req, *cache->get(req.scene).entry, timer, frame.report, &frame.probe);
-    if (pt.width == 0) pt = frame.probe.pathTraced;
-    if (pt.width == 0) pt = frame.probe.reference;
-    std::cout << fmt::format("clamp {}: ", clamp);
-    printErrors("shadowed BF vs PT",
-                lgh::compareByMaterial(frame.probe.reference, pt, frame.probe.metallicRoughness));
-    std::cout << fmt::format("clamp {}: ", clamp);
-    printErrors("LGH frame vs PT", lgh::compareByMaterial(lgh::multiplied(frame.probe.indirect,
-                                                                          frame.probe.shadowRatio),
-                                                          pt, frame.probe.metallicRoughness));
-    printErrors(
-        "LGH frame vs BF",
-        lgh::compareByMaterial(lgh::multiplied(frame.probe.indirect, frame.probe.shadowRatio),
-                               frame.probe.reference, frame.probe.metallicRoughness));
-    std::cout << fmt::format(
-        "means: indirect {:.5f} ratio {:.4f} product {:.5f} bf {:.5f} pt {:.5f}\n",
-        meanLuminance(frame.probe.indirect), meanLuminance(frame.probe.shadowRatio),
-        meanLuminance(lgh::multiplied(frame.probe.indirect, frame.probe.shadowRatio)),
-        meanLuminance(frame.probe.reference), meanLuminance(pt));
-    if (std::getenv("GI_SAVE")) {
-      auto save = [](const lgh::FloatImage& image, const std::string& name) {
-        const lgh::Image8 display = lgh::toDisplay8(image, lgh::ToneMap::Aces, 3.0F, false);
-        lgh::image_io::writeFile(lgh::test::outputDir() / (name + ".png"),
-                                 lgh::image_io::encodePng(display));
-      };
-      save(lgh::multiplied(frame.probe.indirect, frame.probe.shadowRatio), "x_lgh_shadowed");
-      save(frame.probe.indirect, "x_lgh");
-      save(frame.probe.reference, "x_bf_shadowed");
-      save(frame.probe.shadowRatio, "x_ratio");
-      if (frame.probe.pathTraced.width) save(frame.probe.pathTraced, "x_pt");
-    }
-    if (std::getenv("GI_ONE")) break;
-  }
+  std::cout << fmt::format(
+      "[ gi ] far field ({} pixels): LGH / brute force {:.6f}, worst pixel "
+      "{:.2e}\n",
+      far, sumLgh / sumReference, worst);
+  ASSERT_GT(far, 500);
+  EXPECT_NEAR(sumLgh / sumReference, 1.0, 1e-3);
+  EXPECT_LT(worst, 1e-3);
 }
 
 TEST_F(GlobalIllumination, ConflictingRequestsNameTheField) {

@@ -52,6 +52,7 @@ struct LghFrameProbe {
   PointLightVisibility visibility;
   // The path-traced reference (settings.gi frames only): samples per pixel, 0 for none.
   int pathTracedSamples = 0;
+  bool readGBuffer = false;  // fill `gbuffer` (for CPU references)
 
   FloatImage indirect;    // the LGH lighting, linear, top row first
   FloatImage reference;   // the brute-force image (bruteForce)
@@ -69,6 +70,13 @@ struct LghFrameProbe {
   // G-buffer's material (metallic, roughness) per pixel, top row first like the images.
   FloatImage shadowRatio;
   std::vector<glm::vec2> metallicRoughness;
+  // readGBuffer: what the lighting read per pixel, top row first.
+  struct GBuffer {
+    std::vector<glm::vec4> position;   // w: coverage
+    std::vector<glm::vec3> normal;     // as stored (fp16)
+    std::vector<glm::vec3> baseColor;  // linear (the sRGB target decoded)
+    glm::vec3 cameraPosition{0.0F};
+  } gbuffer;
 };
 
 // What a frame with settings.gi gives the LGH part: the settings, the frame's lights (the light
