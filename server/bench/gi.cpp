@@ -30,6 +30,7 @@ struct GiFlags {
   int bounces = 3;
   float alpha = 2.0F;
   std::string path = "compute";
+  float shadowJitter = 0.0F;
   int table3Vpls = 100000;
   std::vector<std::string> interleaves = cli::enumChoices<InterleaveMode>();
   int iterations = 10;
@@ -64,6 +65,7 @@ GiBenchmarkOptions optionsFrom(const GiFlags& flags, const cli::ContextFlags& co
   options.bounces = flags.bounces;
   options.alpha = flags.alpha;
   options.path = cli::enumValue<LightingPath>(flags.path);
+  options.shadowJitter = flags.shadowJitter;
   options.table3Vpls = flags.table3Vpls;
   options.interleaves.clear();
   for (const std::string& name : flags.interleaves) {
@@ -147,6 +149,10 @@ Command addGiCommand(CLI::App& app, const cli::ContextFlags& context) {
       ->capture_default_str();
   sub->add_option("--path", flags->path, "lighting path: compute, raster")
       ->check(CLI::IsMember(cli::enumChoices<LightingPath>({"auto"})))
+      ->capture_default_str();
+  sub->add_option("--shadow-jitter", flags->shadowJitter,
+                  "jitter of the LGH's shadow samples, 0..1 of the paper's (docs/GI.md)")
+      ->check(CLI::Range(0.0F, 1.0F))
       ->capture_default_str();
   sub->add_option("--table3-vpls", flags->table3Vpls, "VPLs of Table 3")
       ->check(CLI::PositiveNumber)

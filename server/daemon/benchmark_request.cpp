@@ -14,10 +14,10 @@ namespace {
 using json = nlohmann::json;
 
 const std::set<std::string> kFields = {
-    "suite",          "vpls",         "width",          "height",      "scene",
-    "bounces",        "alpha",        "path",           "table3_vpls", "interleave",
-    "iterations",     "warmup",       "overdraw",       "quality",     "quality_width",
-    "quality_height", "quality_vpls", "quality_alphas", "pt_samples",  "seed"};
+    "suite",      "vpls",    "width",         "height",         "scene",        "bounces",
+    "alpha",      "path",    "table3_vpls",   "interleave",     "iterations",   "warmup",
+    "overdraw",   "quality", "quality_width", "quality_height", "quality_vpls", "quality_alphas",
+    "pt_samples", "seed",    "shadow_jitter"};
 
 ApiError invalid(const std::string& field, const std::string& message) {
   return fromLghError(lgh::Error(lgh::ErrorCode::Invalid, message, "/" + field));
@@ -145,6 +145,15 @@ lgh::bench::GiBenchmarkOptions parseBenchmarkRequest(const nlohmann::json& body,
     options.sceneName = body.at("scene").get<std::string>();
   }
   options.bounces = integer(body, "bounces", options.bounces, 1, 3);
+  if (body.contains("shadow_jitter")) {
+    const json& jitter = body.at("shadow_jitter");
+    if (!jitter.is_number()) throw badRequest("must be a number", "/shadow_jitter");
+    const double value = jitter.get<double>();
+    if (!(value >= 0.0 && value <= 1.0)) {
+      throw invalid("shadow_jitter", fmt::format("must be 0 to 1, got {}", value));
+    }
+    options.shadowJitter = static_cast<float>(value);
+  }
   options.alpha = positive(body, "alpha", options.alpha, 16.0F);
   if (body.contains("path")) {
     options.path = enumeration<lgh::LightingPath>(body.at("path"), "path");
@@ -172,7 +181,8 @@ lgh::bench::GiBenchmarkOptions parseBenchmarkRequest(const nlohmann::json& body,
     options.qualityAlphas.clear();
     const json list = arrayOf(body, "quality_alphas");
     for (std::size_t i = 0; i < list.size(); ++i) {
-      options.qualityAlphas.push_back(positive(json{{"a", list[i]}}, "a", 1.0F, 16.0F));
+      const std::string field = fmt::format("quality_alphas/{}", i);
+      options.qualityAlphas.push_back(positive(json{{field, list[i]}}, field, 1.0F, 16.0F));
     }
   }
   options.pathTracedSamples = integer(body, "pt_samples", options.pathTracedSamples, 1, 1 << 16);

@@ -117,6 +117,12 @@ TEST(HttpBenchmark, MistakesAreAnsweredAtOnceNamingTheField) {
   EXPECT_EQ(lghd::test::expectError(type, 400, "bad_request").at("field"), "/width");
   const auto range = lghd::test::postJson(*http, "/v1/benchmark", {{"bounces", 4}});
   EXPECT_EQ(lghd::test::expectError(range, 422, "invalid").at("field"), "/bounces");
+  const auto alphas =
+      lghd::test::postJson(*http, "/v1/benchmark", {{"vpls", {1000}}, {"quality_alphas", {2, -1}}});
+  EXPECT_EQ(lghd::test::expectError(alphas, 422, "invalid").at("field"), "/quality_alphas/1");
+  const auto jitter =
+      lghd::test::postJson(*http, "/v1/benchmark", {{"vpls", {1000}}, {"shadow_jitter", 2}});
+  EXPECT_EQ(lghd::test::expectError(jitter, 422, "invalid").at("field"), "/shadow_jitter");
   const auto scene = lghd::test::postJson(*http, "/v1/benchmark", {{"scene", "nave"}});
   EXPECT_EQ(lghd::test::expectError(scene, 422, "invalid").at("field"), "/scene");
   // The default VPL counts reach 1M, over this daemon's limit.

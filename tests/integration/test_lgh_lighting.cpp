@@ -399,7 +399,10 @@ TEST_F(LghLighting, ShadowSamplesAreValidAndSkipS1ByDefault) {
 }
 
 // Frames that are averaged need their own shadow samples: settings.lgh.frame gives each frame its
-// own sequence (frame 0 is the seed's own), while the lighting itself does not change.
+// own sequence (frame 0 is the seed's own), while the lighting itself does not change. The build's
+// float atomics (llvmpipe has them) sum in a different order each run, so two runs differ by float
+// rounding (about 3e-5 relative here) and a reservoir choice on a tie may flip: the bounds allow
+// that and nothing more.
 TEST_F(LghLighting, EachFrameIndexHasItsOwnShadowSamples) {
   Options options;
   options.jitter = 1.0F;  // the jitter draws from the sequence too
@@ -407,9 +410,9 @@ TEST_F(LghLighting, EachFrameIndexHasItsOwnShadowSamples) {
   const Frame again = render(options);
   options.frame = 1;
   const Frame next = render(options);
-  EXPECT_EQ(identicalSampleFraction(first, again), 1.0);
+  EXPECT_GE(identicalSampleFraction(first, again), 0.99);
   EXPECT_LT(identicalSampleFraction(first, next), 0.5) << "frame 1 draws other samples";
-  EXPECT_LT(lgh::compareToReference(next.probe.indirect, first.probe.indirect).relativeRmse, 1e-6)
+  EXPECT_LT(lgh::compareToReference(next.probe.indirect, first.probe.indirect).relativeRmse, 1e-4)
       << "the lighting does not depend on the frame";
 }
 
