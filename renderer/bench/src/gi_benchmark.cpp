@@ -1,6 +1,7 @@
 #include "lgh/bench/gi_benchmark.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <memory>
 
@@ -20,6 +21,8 @@ namespace {
 constexpr const char* kGenerationPass = "gi vpls";
 constexpr const char* kBuildPass = "lgh build";
 constexpr int kPanelWidth = 320;
+// Untimed frames before the first timed one while warm-up frames are asked for (GPU clocks).
+constexpr double kClockWarmupSeconds = 1.0;
 
 // One frame configuration.
 struct GiRun {
@@ -128,6 +131,17 @@ class GiSession {
     gl::GpuTimer timer;
     pipeline_.render(request, *scene_, timer, report, probe);
     return report;
+  }
+
+  // Renders `run` untimed for `seconds` of wall time: the GPU's clocks ramp up before the first
+  // timed frame (as lgh-bench render does; docs/BENCHMARKS.md).
+  void warmUp(const GiRun& run, double seconds) {
+    const RenderRequest req = request(run);
+    const auto start = std::chrono::steady_clock::now();
+    do {
+      frame(req);
+    } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
+             seconds);
   }
 
   TimedFrames time(const GiRun& run) {
@@ -322,6 +336,15 @@ GiBenchmarkResult runGiBenchmark(const GiBenchmarkOptions& options) {
   result.options.progress = nullptr;
   result.device = session.device();
   result.sceneTriangles = session.triangles();
+  if (options.warmupIterations > 0) {
+    session.warmUp({.vpls = options.table3Vpls,
+                    .width = options.width,
+                    .height = options.height,
+                    .shadows = true,
+                    .samples = 4,
+                    .alpha = options.alpha},
+                   kClockWarmupSeconds);
+  }
   std::vector<HeatMapPanel> panels;
   for (const int vpls : options.vplCounts) {
     result.table2.push_back(table2Row(session, options, vpls, panels));
