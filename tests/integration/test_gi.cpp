@@ -3,7 +3,8 @@
 //    other VPLs); both tracing paths (ray query, pipeline) give the very same VPLs;
 //  - energy: in a closed room every path hits, so bounce b's VPLs carry exactly the light's power
 //    times albedo^b (/ 2 pi), and the room gathers more light with more bounces, converging;
-//  - emissive triangles are area lights: their emission VPLs carry pi L A;
+//  - emissive triangles are area lights: their emission VPLs carry pi L A; directional and spot
+//    lights deposit their power;
 //  - the light paths' timing rows and decisions; the request's conflicts; no Vulkan: 503.
 // The golden image of the demo with one bounce is in test_render_golden.cpp.
 #include <gtest/gtest.h>
@@ -498,6 +499,52 @@ TEST_F(GlobalIllumination, FarFromItsLightsTheHierarchyEqualsTheBruteForce) {
   ASSERT_GT(far, 500);
   EXPECT_NEAR(sumLgh / sumReference, 1.0, 1e-3);
   EXPECT_LT(worst, 1e-3);
+}
+
+// Directional and spot lights deposit their power: over the floor of boxAboveFloor every path of a
+// sun shining straight down hits (the box's top or the floor beneath the bounding box's top face),
+// so the first bounce's VPLs carry albedo x E x the box's footprint / (2 pi); a spot pointing down
+// at the floor, with its cone's edge a hard one (inner = outer), carries 2 pi (1 - cos outer) I.
+TEST_F(GlobalIllumination, DirectionalAndSpotLightsDepositTheirPower) {
+  constexpr double kAlbedo = 0.8;  // boxAboveFloor's white
+  auto scene = cached(boxAboveFloor());
+  const auto firstBounce = [&](const json& light) {
+    json body = {{"output", {{"width", 32}, {"height", 24}}},
+                 {"camera",
+                  {{"type", "look_at"},
+                   {"position", {0.0, 12.0, 30.0}},
+                   {"target", {0.0, 0.0, 0.0}},
+                   {"yfov", 60}}},
+                 {"lights", {light}},
+                 {"use_default_lights", false},
+                 {"settings",
+                  {{"shadows", "off"},
+                   {"ambient", 0},
+                   {"gi", {{"enabled", true}, {"bounces", 1}, {"vpl_count", 4000}}}}}};
+    const Frame frame = render(lgh::parseRenderRequest(body), *scene);
+    EXPECT_EQ(litVpls(frame), 4000U) << "every path hits";
+    return slotSum(frame, 0);
+  };
+  constexpr double kSun = 3.0;
+  const glm::dvec3 sun =
+      firstBounce({{"type", "directional"}, {"direction", {0.0, -1.0, 0.0}}, {"intensity", kSun}});
+  const double sunExpected = kAlbedo * kSun * 80.0 * 80.0 / (2.0 * glm::pi<double>());
+  constexpr double kSpot = 50.0;
+  constexpr double kOuter = 0.3;
+  const glm::dvec3 spot = firstBounce({{"type", "spot"},
+                                       {"position", {0.0, 5.0, 0.0}},
+                                       {"direction", {0.0, -1.0, 0.0}},
+                                       {"intensity", kSpot},
+                                       {"inner_cone_angle", kOuter},
+                                       {"outer_cone_angle", kOuter}});
+  const double spotExpected = kAlbedo * kSpot * (1.0 - std::cos(kOuter));
+  std::cout << fmt::format(
+      "[ gi ] first bounce: sun {:.4f} (expected {:.4f}), spot {:.5f} ({:.5f})\n", sun.r,
+      sunExpected, spot.r, spotExpected);
+  EXPECT_NEAR(sun.r / sunExpected, 1.0, 1e-3);
+  EXPECT_NEAR(sun.b / sunExpected, 1.0, 1e-3);
+  // The hard edge is a ramp 1e-4 wide in cos(angle) (lights.glsl): under 0.3% of the cone.
+  EXPECT_NEAR(spot.r / spotExpected, 1.0, 3e-3);
 }
 
 TEST_F(GlobalIllumination, ConflictingRequestsNameTheField) {
