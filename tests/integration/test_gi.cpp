@@ -213,9 +213,10 @@ class GlobalIllumination : public ::testing::Test {
   static glm::dvec3 slotSum(const Frame& frame, int slot) {
     glm::dvec3 sum(0.0);
     const lgh::VplLayout& layout = frame.probe.vplLayout;
-    for (int p = 0; p < layout.paths; ++p) {
-      sum += glm::dvec3(glm::vec3(
-          frame.probe.vpls[static_cast<std::size_t>(slot * layout.paths + p)].intensityPad));
+    const auto paths = static_cast<std::size_t>(layout.paths);
+    for (std::size_t p = 0; p < paths; ++p) {
+      sum += glm::dvec3(
+          glm::vec3(frame.probe.vpls[static_cast<std::size_t>(slot) * paths + p].intensityPad));
     }
     return sum;
   }
