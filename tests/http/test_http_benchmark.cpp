@@ -38,15 +38,16 @@ void expectSameShape(const json& a, const json& b, const std::string& at) {
   if (a.is_object()) {
     for (const auto& [key, value] : a.items()) {
       ASSERT_TRUE(b.contains(key)) << at << "/" << key << " missing from the CLI's document";
-      expectSameShape(value, b.at(key), at + "/" + key);
+      expectSameShape(value, b.at(key), fmt::format("{}/{}", at, key));
     }
     for (const auto& [key, value] : b.items()) {
       EXPECT_TRUE(a.contains(key)) << at << "/" << key << " missing from the daemon's document";
     }
   } else if (a.is_array()) {
     ASSERT_EQ(a.size(), b.size()) << at;
-    for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t i = 0; i < a.size(); ++i) {
       expectSameShape(a[i], b[i], fmt::format("{}/{}", at, i));
+    }
   } else if (a.is_string() || a.is_boolean()) {
     // Names of passes, paths, interleavings, devices: the same run, the same words.
     EXPECT_EQ(a, b) << at;
@@ -70,7 +71,7 @@ json waitForEnd(httplib::Client& http) {
   for (int i = 0; i < 1200; ++i) {
     const auto status = http.Get("/v1/benchmark");
     if (!status || status->status != 200) return nullptr;
-    const json body = json::parse(status->body);
+    json body = json::parse(status->body);
     if (body.at("status") != "running") return body;
     std::this_thread::sleep_for(std::chrono::milliseconds(250));
   }

@@ -339,8 +339,9 @@ std::vector<Material> makeMaterials() {
   materials[kRed] = material("cloth_red", {0.70F, 0.08F, 0.06F}, 0.95F);
   materials[kBlue] = material("cloth_blue", {0.08F, 0.16F, 0.60F}, 0.95F);
   materials[kGreen] = material("cloth_green", {0.10F, 0.50F, 0.12F}, 0.95F);
-  for (int cloth : {kRed, kBlue, kGreen})
+  for (int cloth : {kRed, kBlue, kGreen}) {
     materials[static_cast<std::size_t>(cloth)].doubleSided = true;
+  }
   materials[kMetal] = material("polished_brass", {0.95F, 0.80F, 0.55F}, 0.25F, 1.0F);
   return materials;
 }
