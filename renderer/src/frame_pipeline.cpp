@@ -39,8 +39,9 @@ std::vector<LightDesc> frameLights(const RenderRequest& request, const Scene& sc
 FramePipeline::FramePipeline(ShadowDevice* shadowDevice) : shadows_(shadowDevice) {}
 FramePipeline::~FramePipeline() = default;
 
-void FramePipeline::render(const RenderRequest& request, const CachedScene& cached,
-                           gl::GpuTimer& timer, FrameReport& report, LghFrameProbe* probe) {
+void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached,
+                         gl::GpuTimer& timer, FrameReport& report, OutputPixels pixels,
+                         LghFrameProbe* probe) {
   const OutputSettings& output = request.output;
   const CameraMatrices camera =
       computeCamera(request.camera, cached.scene, output.width, output.height);
@@ -73,17 +74,34 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
       shadows_.filterLgh(shadowSettings.filterIterations, camera, targets_, timer);
   {
     gl::ScopedGpuPass pass(timer, "composite");
-    compositePass_.run(output, lgh.enabled, shadowRatio, targets_);
+    compositePass_.run(output, pixels, lgh.enabled, shadowRatio, targets_);
   }
-  const Stopwatch readback;
-  report.image = readbackFinal(targets_);
-  const double readbackMs = readback.elapsedMs();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  timer.collect(report.timings);
-  shadows_.collectTimings(report);
-  report.timings.add("readback", TimingRow::Clock::Cpu, readbackMs);
+  glFlush();  // the GPU starts on the frame while the tracer's timings are waited for
+  FrameReport shadowRows;
+  shadows_.collectTimings(shadowRows);
+  report.deferredRows = std::move(shadowRows.timings);
   report.decide("lighting", lgh.enabled ? "direct+lgh" : "direct");
   report.decide("lights", std::to_string(lights.size()));
+}
+
+void FramePipeline::pack(OutputPixels pixels, FramePixels::Layout layout, GLuint packBuffer,
+                         gl::GpuTimer& timer) {
+  gl::ScopedGpuPass pass(timer, "readback");
+  packOutput(targets_, pixels, layout, packBuffer);
+}
+
+void FramePipeline::render(const RenderRequest& request, const CachedScene& cached,
+                           gl::GpuTimer& timer, FrameReport& report, LghFrameProbe* probe) {
+  draw(request, cached, timer, report, OutputPixels::LinearFloat, probe);
+  const Stopwatch readback;
+  report.image = readLinearOutput(targets_);
+  const double readbackMs = readback.elapsedMs();
+  timer.collect(report.timings);
+  report.timings.rows.insert(report.timings.rows.end(), report.deferredRows.rows.begin(),
+                             report.deferredRows.rows.end());
+  report.deferredRows = {};
+  report.timings.add("readback", TimingRow::Clock::Cpu, readbackMs);
 }
 
 }  // namespace lgh

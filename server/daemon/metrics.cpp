@@ -102,6 +102,7 @@ void Metrics::recordRenderTimes(const lgh::TimingTable& timings, double queueSec
   std::lock_guard lock(mutex_);
   queueWaitSeconds_.observe(queueSeconds);
   for (const lgh::TimingRow& row : timings.rows) {
+    if (row.name == "queue") continue;  // lghd_queue_wait_seconds
     if (row.name == "total") {
       entry(renderSeconds_, cacheHit ? "scene_cache=\"hit\"" : "scene_cache=\"miss\"",
             kLatencyBuckets)
@@ -118,6 +119,14 @@ void Metrics::recordRenderTimes(const lgh::TimingTable& timings, double queueSec
 void Metrics::recordShadows(const std::string& shadows) {
   std::lock_guard lock(mutex_);
   ++shadows_[fmt::format("shadows=\"{}\"", escapeLabel(shadows))];
+}
+
+void Metrics::recordEncode(std::string_view format, double waitSeconds, double encodeSeconds) {
+  std::lock_guard lock(mutex_);
+  encodeWaitSeconds_.observe(waitSeconds);
+  entry(encodeSeconds_, fmt::format("format=\"{}\"", escapeLabel(std::string(format))),
+        kPassBuckets)
+      .observe(encodeSeconds);
 }
 
 void Metrics::recordThumbnail(const std::string& status) {
@@ -152,6 +161,16 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
         "1 when the Vulkan shadow tracer is up, 0 when this machine cannot trace shadows (see "
         "/v1/info), -1 until a frame has asked for shadows.",
         gauges.shadowTracer);
+  gauge(out, "lghd_frames_in_flight",
+        "Frames between submission to the GPU and the end of their encoding.",
+        static_cast<double>(gauges.framesInFlight));
+  gauge(out, "lghd_frames_in_flight_limit", "--frames-in-flight: the render thread waits beyond.",
+        static_cast<double>(gauges.frameLimit));
+  gauge(out, "lghd_encode_threads", "Threads encoding finished frames (--encode-threads).",
+        static_cast<double>(gauges.encodeThreads));
+  gauge(out, "lghd_readback_bytes",
+        "Read-back memory held by frames in flight (their pixels, until encoded).",
+        static_cast<double>(gauges.readbackBytes));
 
   std::lock_guard lock(mutex_);
   header(out, "lghd_http_requests_total", "counter",
@@ -165,7 +184,8 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
          "skipped (deadline passed or cancelled before it started).");
   counterLines(out, "lghd_renders_total", renders_);
   header(out, "lghd_render_duration_seconds", "histogram",
-         "Render time on the render thread (scene load to encoded image), by scene-cache result.");
+         "Render time from the render thread taking the request to its encoded image (the \"total\" "
+         "row), by scene-cache result.");
   histogramLines(out, "lghd_render_duration_seconds", renderSeconds_);
   header(out, "lghd_render_pass_seconds", "histogram",
          "Time of each pass of a render: clock=gpu from timer queries, clock=cpu from a steady "
@@ -173,6 +193,12 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
   histogramLines(out, "lghd_render_pass_seconds", passSeconds_);
   header(out, "lghd_queue_wait_seconds", "histogram", "Time renders waited in the queue.");
   queueWaitSeconds_.write(out, "lghd_queue_wait_seconds", "");
+  header(out, "lghd_encode_seconds", "histogram",
+         "Time an encoder thread took to encode a frame, by output format.");
+  histogramLines(out, "lghd_encode_seconds", encodeSeconds_);
+  header(out, "lghd_encode_wait_seconds", "histogram",
+         "Time finished frames waited for an encoder thread.");
+  encodeWaitSeconds_.write(out, "lghd_encode_wait_seconds", "");
   header(out, "lghd_thumbnails_total", "counter", "Thumbnails rendered in batches, by status.");
   counterLines(out, "lghd_thumbnails_total", thumbnails_);
   header(out, "lghd_render_shadows_total", "counter",

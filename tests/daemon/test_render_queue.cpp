@@ -164,8 +164,8 @@ TEST_F(RenderQueueTest, RendersOnceReady) {
   EXPECT_EQ(job->requestId, "req-1");
   ASSERT_EQ(job->tickets.size(), 1U);
   const lgh::RenderResult result = job->tickets[0]->wait(farDeadline());
-  EXPECT_EQ(result.image.width, 48);
-  EXPECT_EQ(result.image.height, 32);
+  EXPECT_EQ(result.output.width, 48);
+  EXPECT_EQ(result.output.height, 32);
   ASSERT_GE(result.encoded.size(), 8U);
   EXPECT_EQ(result.encoded[1], 'P');
   EXPECT_EQ(result.encoded[2], 'N');
