@@ -3,8 +3,8 @@
 // rays (GL setup, Vulkan trace) -> direct lighting with visibility -> [LGH shadow ratio +
 // filter] -> composite (display codes for PNG, linear light for EXR) -> pack into a read-back
 // buffer. Owns the passes and the frame targets; the renderer owns the context, the scene cache,
-// the read-back buffers and the frames in flight. The LGH part (passes/lgh_frame_lighting.hpp) is created on the first
-// frame that enables it, so frames without it run exactly as before.
+// the read-back buffers and the frames in flight. The LGH part (passes/lgh_frame_lighting.hpp) is
+// created on the first frame that enables it, so frames without it run exactly as before.
 #pragma once
 
 #include <memory>

@@ -39,7 +39,7 @@ struct PendingFrame {
   gl::Fence fence;
   FrameReport report;
   bool sceneCacheHit = false;
-  Stopwatch::Clock::time_point submitted;  // when submit() returned
+  Stopwatch::Clock::time_point submitted;                // when submit() returned
   std::optional<Stopwatch::Clock::time_point> readBack;  // when its fence was seen signalled
 };
 

@@ -50,5 +50,7 @@ Command addRenderCommand(CLI::App& app, const cli::ContextFlags& context);
 Command addShadowsCommand(CLI::App& app, const cli::ContextFlags& context);
 // `lgh-bench handoff`: the GL -> Vulkan hand-off in and out of process (server/bench/handoff.cpp).
 Command addHandoffCommand(CLI::App& app, const cli::ContextFlags& context);
+// `lgh-bench png`: PNG encoders on the demo's display codes (server/bench/png.cpp).
+Command addPngCommand(CLI::App& app, const cli::ContextFlags& context);
 
 }  // namespace lgh::bench

@@ -183,9 +183,10 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
          "Renders by outcome: ok, error, timeout (finished after its deadline, discarded), "
          "skipped (deadline passed or cancelled before it started).");
   counterLines(out, "lghd_renders_total", renders_);
-  header(out, "lghd_render_duration_seconds", "histogram",
-         "Render time from the render thread taking the request to its encoded image (the \"total\" "
-         "row), by scene-cache result.");
+  header(
+      out, "lghd_render_duration_seconds", "histogram",
+      "Render time from the render thread taking the request to its encoded image (the \"total\" "
+      "row), by scene-cache result.");
   histogramLines(out, "lghd_render_duration_seconds", renderSeconds_);
   header(out, "lghd_render_pass_seconds", "histogram",
          "Time of each pass of a render: clock=gpu from timer queries, clock=cpu from a steady "

@@ -79,8 +79,8 @@ class Metrics {
   std::map<Labels, std::uint64_t> thumbnails_;  // status
   std::map<Labels, std::uint64_t> shadows_;     // shadows
   std::map<Labels, Histogram> encodeSeconds_;   // format
-  Histogram encodeWaitSeconds_{{0.0001, 0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1,
-                                0.25, 0.5, 1, 2.5}};
+  Histogram encodeWaitSeconds_{
+      {0.0001, 0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 2.5}};
 };
 
 // `value` escaped for a label value: backslash, double quote and newline.

@@ -163,7 +163,8 @@ RuntimeGauges RenderQueue::gauges() const {
   gauges.framesInFlight = framesOutstanding_;
   gauges.frameLimit = options_.output.frameLimit();
   gauges.encodeThreads = static_cast<std::size_t>(options_.output.encoderCount());
-  gauges.readbackBytes = readbackBytes_;
+  // Live: frames give their read-back memory back on encoder threads, after the last publish.
+  gauges.readbackBytes = renderer_ ? renderer_->readbackStats().heldBytes : 0;
   gauges.shadowTracer = shadowInfo_.status == "ready"         ? 1
                         : shadowInfo_.status == "unavailable" ? 0
                                                               : -1;
@@ -226,7 +227,7 @@ void RenderQueue::run() {
     }
     settleFramesInFlight();
   }
-  renderer_.reset();  // the context is destroyed on the thread that made it
+  releaseRenderer();  // the context is destroyed on the thread that made it
   std::lock_guard lock(mutex_);
   threadDone_ = true;
   idleCondition_.notify_all();
@@ -236,11 +237,12 @@ bool RenderQueue::bringUpRenderer() {
   const auto start = Clock::now();
   if (!encoders_) encoders_ = std::make_unique<lgh::TaskPool>(options_.output.encoderCount());
   try {
-    renderer_ = std::make_unique<lgh::Renderer>(options_.renderer);
-    const lgh::RenderResult selfTest = renderer_->render(selfTestRequest());
+    auto renderer = std::make_unique<lgh::Renderer>(options_.renderer);
+    const lgh::RenderResult selfTest = renderer->render(selfTestRequest());
     if (selfTest.encoded.empty()) throw internalError("the self-test render produced no image");
+    std::lock_guard lock(mutex_);
+    renderer_ = std::move(renderer);
   } catch (const std::exception& error) {
-    renderer_.reset();
     {
       std::lock_guard lock(mutex_);
       state_ = State::Failed;
@@ -266,10 +268,10 @@ bool RenderQueue::bringUpRenderer() {
 // in flight on it fail, and the encoders finish reading pixels from its read-back memory first.
 void RenderQueue::recoverRenderer(const std::string& reason) {
   logging::event(spdlog::level::err, "renderer_reset", {{"reason", reason}});
-  failFramesInFlight(internalError("the GL context failed while this frame was in flight: " +
-                                   reason));
+  failFramesInFlight(
+      internalError("the GL context failed while this frame was in flight: " + reason));
   encoders_->waitIdle();
-  renderer_.reset();
+  releaseRenderer();
   {
     std::lock_guard lock(mutex_);
     state_ = State::Starting;
@@ -457,9 +459,9 @@ void RenderQueue::encode(FrameInFlight& frame, lgh::RenderResult& result) {
     metrics_.recordRender("ok");
   } else {
     metrics_.recordRender("timeout");
-    logging::event(spdlog::level::warn, "render_discarded",
-                   {{"request_id", frame.job->requestId},
-                    {"render_ms", millisecondsSince(frame.started)}});
+    logging::event(
+        spdlog::level::warn, "render_discarded",
+        {{"request_id", frame.job->requestId}, {"render_ms", millisecondsSince(frame.started)}});
   }
   frameDone(frame, secondsSince(frame.started));
 }
@@ -497,11 +499,15 @@ void RenderQueue::settleFramesInFlight() {
 void RenderQueue::publishRendererState() {
   const lgh::Renderer::CacheStats stats = renderer_->sceneCacheStats();
   lgh::ShadowInfo shadows = renderer_->shadowInfo();
-  const std::size_t readbackBytes = renderer_->readbackStats().heldBytes;
   std::lock_guard lock(mutex_);
   cacheStats_ = stats;
   shadowInfo_ = std::move(shadows);
-  readbackBytes_ = readbackBytes;
+}
+
+// Under mutex_, so that gauges() may read the renderer's read-back memory from HTTP threads.
+void RenderQueue::releaseRenderer() {
+  std::lock_guard lock(mutex_);
+  renderer_.reset();
 }
 
 lgh::ShadowInfo RenderQueue::shadows() const {

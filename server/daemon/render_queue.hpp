@@ -31,9 +31,9 @@
 #include <thread>
 #include <vector>
 
+#include "config.hpp"
 #include "lgh/task_pool.hpp"
 #include "lgh/vulkan_info.hpp"
-#include "config.hpp"
 #include "metrics.hpp"
 #include "render_ticket.hpp"
 
@@ -119,16 +119,19 @@ class RenderQueue {
   void settleFramesInFlight();
   void failFramesInFlight(const ApiError& error);
   void encode(FrameInFlight& frame, lgh::RenderResult& result);  // an encoder thread
-  void frameDone(const FrameInFlight& frame, double seconds);      // any thread
+  void frameDone(const FrameInFlight& frame, double seconds);    // any thread
   const lgh::RenderRequest* nextRequest(const RenderJob& job, std::size_t index);
   void publishRendererState();
+  void releaseRenderer();
   int retryAfterSeconds() const;  // under mutex_
   void failAll(RenderJob& job, const ApiError& error);
 
   Options options_;
   Metrics& metrics_;
   FatalHandler onFatal_;
-  std::unique_ptr<lgh::Renderer> renderer_;  // render thread only
+  // Made, used and destroyed on the render thread; assigned under mutex_, where gauges() reads
+  // its read-back memory (Renderer::readbackStats is safe on any thread).
+  std::unique_ptr<lgh::Renderer> renderer_;
 
   mutable std::mutex mutex_;
   std::condition_variable workCondition_;
@@ -163,7 +166,6 @@ class RenderQueue {
   std::condition_variable frameDoneCondition_;
   std::size_t framesOutstanding_ = 0;
   std::size_t bytesOutstanding_ = 0;
-  std::size_t readbackBytes_ = 0;  // the renderer's read-back memory held, as last published
 
   std::thread thread_;
 };

@@ -124,9 +124,11 @@ class RenderQueueTest : public testing::Test {
     return fatal_;
   }
 
+  // Nothing queued, rendering or in flight: the encoders have settled every ticket and counted
+  // its outcome (a waiter wakes before its encoder has counted it).
   bool idle() const {
     const RuntimeGauges gauges = queue_->gauges();
-    return gauges.queueDepth == 0 && !gauges.rendering;
+    return gauges.queueDepth == 0 && !gauges.rendering && gauges.framesInFlight == 0;
   }
 
   Metrics metrics_;  // outlives the queue

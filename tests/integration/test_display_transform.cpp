@@ -38,15 +38,13 @@ class DisplayTransform : public ::testing::Test {
   // The kernel's codes for `values` (a colour channel, or alpha).
   static std::vector<std::uint32_t> gpuCodes(const std::vector<float>& values, lgh::ToneMap toneMap,
                                              float exposure, bool alpha) {
-    const lgh::gl::Program program =
-        lgh::gl::buildComputeProgram("display_transform_check.comp");
+    const lgh::gl::Program program = lgh::gl::buildComputeProgram("display_transform_check.comp");
     const GLuint id = program.id();
     const auto& thresholds = lgh::image_io::detail::srgbThresholds();
     glProgramUniform1fv(id, glGetUniformLocation(id, "uSrgbThresholds"), 255, thresholds.data());
     glProgramUniform1i(id, glGetUniformLocation(id, "uToneMap"), static_cast<int>(toneMap));
     glProgramUniform1f(id, glGetUniformLocation(id, "uExposure"), exposure);
-    glProgramUniform1ui(id, glGetUniformLocation(id, "uCount"),
-                        static_cast<GLuint>(values.size()));
+    glProgramUniform1ui(id, glGetUniformLocation(id, "uCount"), static_cast<GLuint>(values.size()));
     glProgramUniform1i(id, glGetUniformLocation(id, "uAlpha"), alpha ? 1 : 0);
     lgh::gl::Buffer input;
     lgh::gl::Buffer output;
@@ -66,8 +64,8 @@ class DisplayTransform : public ::testing::Test {
   }
 
   // toDisplay8's codes for `values`, as red (or alpha) of a one-row image.
-  static std::vector<std::uint32_t> cpuCodes(const std::vector<float>& values,
-                                             lgh::ToneMap toneMap, float exposure, bool alpha) {
+  static std::vector<std::uint32_t> cpuCodes(const std::vector<float>& values, lgh::ToneMap toneMap,
+                                             float exposure, bool alpha) {
     lgh::FloatImage image;
     image.width = static_cast<int>(values.size());
     image.height = 1;
@@ -75,7 +73,8 @@ class DisplayTransform : public ::testing::Test {
     for (std::size_t i = 0; i < values.size(); ++i) image.rgba[i * 4 + (alpha ? 3 : 0)] = values[i];
     const lgh::Image8 display = lgh::toDisplay8(image, toneMap, exposure, true);
     std::vector<std::uint32_t> codes(values.size());
-    for (std::size_t i = 0; i < values.size(); ++i) codes[i] = display.pixels[i * 4 + (alpha ? 3 : 0)];
+    for (std::size_t i = 0; i < values.size(); ++i)
+      codes[i] = display.pixels[i * 4 + (alpha ? 3 : 0)];
     return codes;
   }
 
@@ -127,9 +126,8 @@ TEST_F(DisplayTransform, KernelIsWithinOneStepOfTheCpuForEveryToneMapAndExposure
       std::size_t differing = 0;
       for (std::size_t i = 0; i < values.size(); ++i) {
         const int difference = static_cast<int>(gpu[i]) - static_cast<int>(cpu[i]);
-        ASSERT_LE(std::abs(difference), 1)
-            << fmt::format("value {:.9g}, tone map {}, exposure {}", values[i],
-                           lgh::enumName(toneMap), exposure);
+        ASSERT_LE(std::abs(difference), 1) << fmt::format(
+            "value {:.9g}, tone map {}, exposure {}", values[i], lgh::enumName(toneMap), exposure);
         differing += difference != 0 ? 1 : 0;
       }
       // Off-by-one codes only where a value sits on a threshold's edge: a handful at most.

@@ -71,7 +71,7 @@ TEST_F(GoldenRender, TransparentBackgroundKeepsAlpha) {
           "output": {"width": 64, "height": 64, "transparent_background": true}})");
   const lgh::Image8 image = renderer->render(request).pixels.toImage8();
   ASSERT_EQ(image.channels, 4);
-  EXPECT_EQ(image.pixels[3], 0);                        // the corner: background
+  EXPECT_EQ(image.pixels[3], 0);                         // the corner: background
   EXPECT_EQ(image.pixels[(32 * 64 + 32) * 4 + 3], 255);  // the centre: the box
 }
 

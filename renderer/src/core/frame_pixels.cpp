@@ -31,9 +31,8 @@ namespace {
 
 void checkHeld(const FramePixels& pixels) {
   if (pixels.empty() || pixels.bytes->size() < pixels.size()) {
-    throw Error(ErrorCode::Internal,
-                fmt::format("frame pixels of {}x{} are released or short", pixels.width,
-                            pixels.height));
+    throw Error(ErrorCode::Internal, fmt::format("frame pixels of {}x{} are released or short",
+                                                 pixels.width, pixels.height));
   }
 }
 
@@ -116,10 +115,10 @@ std::vector<std::uint8_t> encodeFrame(const FramePixels& pixels, const OutputSet
     case ImageFormat::ExrHalf:
     case ImageFormat::ExrFloat: {
       const bool half = output.format == ImageFormat::ExrHalf;
-      return image_io::encodeExr(LinearRgbaView{pixels.width, pixels.height,
-                                                pixels.layout == FramePixels::Layout::RgbaHalf,
-                                                pixels.data()},
-                                 half, metadata);
+      return image_io::encodeExr(
+          LinearRgbaView{pixels.width, pixels.height,
+                         pixels.layout == FramePixels::Layout::RgbaHalf, pixels.data()},
+          half, metadata);
     }
   }
   throw Error(ErrorCode::Internal, "unknown output image format");

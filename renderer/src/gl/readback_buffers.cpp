@@ -72,8 +72,8 @@ constexpr std::size_t kMaxFreeBuffers = 4;
 
 class PooledBytes final : public PixelBytes {
  public:
-  PooledBytes(std::shared_ptr<ReadbackPool::State> state,
-              std::shared_ptr<ReadbackPool::Slot> slot, std::size_t size)
+  PooledBytes(std::shared_ptr<ReadbackPool::State> state, std::shared_ptr<ReadbackPool::Slot> slot,
+              std::size_t size)
       : state_(std::move(state)), slot_(std::move(slot)), size_(size) {}
   ~PooledBytes() override {
     std::lock_guard lock(state_->mutex);
@@ -102,13 +102,12 @@ std::shared_ptr<ReadbackPool::Slot> makeSlot(std::size_t bytes) {
   // Client storage: the GPU writes across the bus once, the CPU reads cached memory.
   glNamedBufferStorage(slot->buffer, static_cast<GLsizeiptr>(bytes), nullptr,
                        kMapFlags | GL_CLIENT_STORAGE_BIT);
-  void* mapped =
-      glMapNamedBufferRange(slot->buffer, 0, static_cast<GLsizeiptr>(bytes), kMapFlags);
+  void* mapped = glMapNamedBufferRange(slot->buffer, 0, static_cast<GLsizeiptr>(bytes), kMapFlags);
   if (mapped == nullptr) {
     glDeleteBuffers(1, &slot->buffer);
     throw Error(ErrorCode::Internal,
-                fmt::format("could not map a read-back buffer of {} bytes (GL error 0x{:x})",
-                            bytes, glGetError()));
+                fmt::format("could not map a read-back buffer of {} bytes (GL error 0x{:x})", bytes,
+                            glGetError()));
   }
   slot->mapped = static_cast<std::uint8_t*>(mapped);
   slot->capacity = bytes;

@@ -74,7 +74,6 @@ void readFromMemory(png_structp png, png_bytep destination, std::size_t length) 
   io->position += length;
 }
 
-
 // Owns a png_struct and its png_info for reading.
 class PngStructs {
  public:

@@ -221,7 +221,8 @@ std::vector<std::uint8_t> encodeExr(const LinearRgbaView& image, bool halfFloat,
     spec.attribute(std::string(oiioNameFor(key, kExrWriteAliases)), value);
   }
   return writeToMemory("memory.exr", spec,
-                       image.halfFloat ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT, image.pixels);
+                       image.halfFloat ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT,
+                       image.pixels);
 }
 
 Decoded decode(const std::vector<std::uint8_t>& bytes, const std::string& what) {

@@ -290,19 +290,18 @@ void checkImage8(const Image8& image) {
 void checkImage8View(const Image8View& image) {
   if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4 ||
       image.pixels == nullptr) {
-    throw Error(ErrorCode::Internal,
-                fmt::format("malformed 8-bit image view: {}x{}, {} channels", image.width,
-                            image.height, image.channels));
+    throw Error(ErrorCode::Internal, fmt::format("malformed 8-bit image view: {}x{}, {} channels",
+                                                 image.width, image.height, image.channels));
   }
 }
 
 void checkLinearRgbaView(const LinearRgbaView& image, bool halfFile) {
   if (image.width <= 0 || image.height <= 0 || image.pixels == nullptr ||
       (image.halfFloat && !halfFile)) {
-    throw Error(ErrorCode::Internal,
-                fmt::format("malformed linear image view: {}x{}, {} pixels for a {} file",
-                            image.width, image.height, image.halfFloat ? "half" : "float",
-                            halfFile ? "half" : "float"));
+    throw Error(
+        ErrorCode::Internal,
+        fmt::format("malformed linear image view: {}x{}, {} pixels for a {} file", image.width,
+                    image.height, image.halfFloat ? "half" : "float", halfFile ? "half" : "float"));
   }
 }
 

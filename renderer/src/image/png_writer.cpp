@@ -112,8 +112,8 @@ std::size_t filteredBytes(const Image8View& image) {
 std::vector<std::uint8_t> filterImage(const Image8View& image, bool adaptive, TaskPool* pool) {
   const std::size_t rowBytes = static_cast<std::size_t>(image.width) * image.channels;
   std::vector<std::uint8_t> filtered(filteredBytes(image));
-  const auto blocks = static_cast<std::size_t>((image.height + kFilterRowsPerTask - 1) /
-                                               kFilterRowsPerTask);
+  const auto blocks =
+      static_cast<std::size_t>((image.height + kFilterRowsPerTask - 1) / kFilterRowsPerTask);
   auto filterBlock = [&](std::size_t block) {
     const int first = static_cast<int>(block) * kFilterRowsPerTask;
     const int end = std::min(image.height, first + kFilterRowsPerTask);
@@ -129,7 +129,9 @@ std::vector<std::uint8_t> filterImage(const Image8View& image, bool adaptive, Ta
 }
 
 struct CompressorFree {
-  void operator()(libdeflate_compressor* compressor) const { libdeflate_free_compressor(compressor); }
+  void operator()(libdeflate_compressor* compressor) const {
+    libdeflate_free_compressor(compressor);
+  }
 };
 
 std::vector<std::uint8_t> deflateWhole(const std::vector<std::uint8_t>& filtered, int level) {
@@ -239,8 +241,7 @@ std::vector<std::uint8_t> deflateStrips(const Image8View& image, int level, int 
 }  // namespace
 
 bool prefersStrips(const Image8View& image, int level, int threads) {
-  return level > 0 && filteredBytes(image) >= kMinStripBytes &&
-         threads >= 2 * zlibSlowdown(level);
+  return level > 0 && filteredBytes(image) >= kMinStripBytes && threads >= 2 * zlibSlowdown(level);
 }
 
 std::vector<std::uint8_t> writePng(const Image8View& image, const ImageMetadata& metadata,

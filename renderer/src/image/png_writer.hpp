@@ -14,9 +14,9 @@
 namespace lgh::image_io::detail {
 
 enum class DeflateMode {
-  Auto,      // strips when the image is large and enough workers are idle, else whole
-  Whole,     // libdeflate over the whole image on the calling thread
-  Strips,    // zlib strips on `pool` (or serially without one)
+  Auto,    // strips when the image is large and enough workers are idle, else whole
+  Whole,   // libdeflate over the whole image on the calling thread
+  Strips,  // zlib strips on `pool` (or serially without one)
 };
 
 struct PngWriteOptions {

@@ -20,9 +20,9 @@ int toneMapCode(ToneMap toneMap) {
 }
 
 gl::Program buildComposite(bool display) {
-  gl::Program program =
-      gl::buildProgram({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "composite.frag"}},
-                       display ? "#define LGH_DISPLAY_OUTPUT 1\n" : "");
+  gl::Program program = gl::buildProgram(
+      {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "composite.frag"}},
+      display ? "#define LGH_DISPLAY_OUTPUT 1\n" : "");
   if (display) {
     const auto& thresholds = image_io::detail::srgbThresholds();
     glProgramUniform1fv(program.id(), glGetUniformLocation(program.id(), "uSrgbThresholds"), 255,

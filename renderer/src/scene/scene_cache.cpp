@@ -6,8 +6,8 @@
 #include <spdlog/spdlog.h>
 
 #include "core/stopwatch.hpp"
-#include "lgh/error.hpp"
 #include "gl/gl_api.hpp"
+#include "lgh/error.hpp"
 #include "scene/asset_path.hpp"
 #include "scene/demo_scene.hpp"
 #include "scene/gltf/gltf_loader.hpp"
@@ -132,10 +132,10 @@ void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& opt
   }
   if (prefetches_.size() >= kMaxPrefetches) return;
   try {
-    prefetches_.emplace(key, std::async(std::launch::async, [rendererOptions = options_, source,
-                                                               options] {
-                          return parse(rendererOptions, source, options);
-                        }));
+    prefetches_.emplace(
+        key, std::async(std::launch::async, [rendererOptions = options_, source, options] {
+          return parse(rendererOptions, source, options);
+        }));
   } catch (const std::system_error& error) {
     spdlog::warn("scene cache: no thread for a prefetch ({}); the scene is parsed when drawn",
                  error.what());

@@ -46,7 +46,7 @@ class SceneCache {
   struct Lookup {
     std::shared_ptr<CachedScene> entry;
     bool hit = false;
-    double loadMs = 0.0;    // parsing, here or on a prefetch thread
+    double loadMs = 0.0;  // parsing, here or on a prefetch thread
     double uploadMs = 0.0;
     bool prefetched = false;  // parsed by prefetch() ahead of this get()
   };
