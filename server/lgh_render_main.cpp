@@ -218,14 +218,16 @@ int run(const Flags& flags) {
   if (!warm.empty()) {
     // Warm frames: the scene is cached and shaders are compiled; report each row's median.
     std::vector<lgh::TimingTable> runs;
+    runs.reserve(warm.size());
     for (const auto& frame : warm) runs.push_back(frame.timings);
     result.timings = medianTimings(runs);
   }
   lgh::image_io::writeFile(flags.output, result.encoded);
   if (!flags.timingsPath.empty()) {
     nlohmann::json summary = result.summaryJson();
-    if (!warm.empty())
+    if (!warm.empty()) {
       summary["warm_frames_per_second"] = static_cast<double>(warm.size()) / warmSeconds;
+    }
     std::ofstream(flags.timingsPath) << summary.dump(2) << '\n';
   }
   if (!flags.quiet) {

@@ -99,8 +99,10 @@ TEST(OutputPipeline, ConcurrentClientsGetTheirOwnImages) {
   DaemonProcess daemon({"--queue-depth", "64", "--encode-threads", "3", "--frames-in-flight", "4"});
   std::mutex mutex;
   std::vector<std::string> failures;
+  constexpr int kClients = 12;
   std::vector<std::thread> clients;
-  for (int client = 0; client < 12; ++client) {
+  clients.reserve(kClients);
+  for (int client = 0; client < kClients; ++client) {
     clients.emplace_back([&, client] {
       auto http = daemon.client();
       for (int round = 0; round < 3; ++round) {

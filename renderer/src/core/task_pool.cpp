@@ -101,8 +101,9 @@ void TaskPool::parallelFor(std::size_t count, const std::function<void(std::size
     {
       std::lock_guard lock(mutex_);
       // At the front: a started image finishes before the next one begins.
-      for (std::size_t i = 0; i < helpers; ++i)
+      for (std::size_t i = 0; i < helpers; ++i) {
         tasks_.emplace_front([range] { range->runClaimed(); });
+      }
     }
     workAvailable_.notify_all();
   }

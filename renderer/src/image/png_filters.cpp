@@ -13,8 +13,9 @@ enum Filter : std::uint8_t { kNone = 0, kSub = 1, kUp = 2, kAverage = 3, kPaeth 
 std::uint32_t cost(const std::uint8_t* row, std::size_t n) {
   std::uint32_t sum = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const int value = static_cast<std::int8_t>(row[i]);
-    sum += static_cast<std::uint32_t>(value < 0 ? -value : value);
+    // The byte read as signed, its absolute value: 0..127 as is, 128..255 as 256 - byte.
+    const std::uint32_t value = row[i];
+    sum += value < 128U ? value : 256U - value;
   }
   return sum;
 }

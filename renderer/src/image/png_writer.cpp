@@ -22,7 +22,7 @@ namespace {
 constexpr std::size_t kIdatChunkBytes = 1 << 20;
 // Below this much filtered data an image is deflated whole: strips would save little time and
 // lose compression at each join.
-constexpr std::size_t kMinStripBytes = 256 * 1024;
+constexpr std::size_t kMinStripBytes = std::size_t{256} * 1024;
 // A strip holds at least this many rows.
 constexpr int kMinStripRows = 16;
 // Rows filtered per task when filtering in parallel ahead of a whole deflate.
