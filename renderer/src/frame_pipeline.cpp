@@ -43,8 +43,9 @@ FramePipeline::FramePipeline(ShadowDevice* shadowDevice)
     : shadows_(shadowDevice), gi_(shadowDevice) {}
 FramePipeline::~FramePipeline() = default;
 
-void FramePipeline::render(const RenderRequest& request, const CachedScene& cached,
-                           gl::GpuTimer& timer, FrameReport& report, LghFrameProbe* probe) {
+void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached,
+                         gl::GpuTimer& timer, FrameReport& report, OutputPixels pixels,
+                         LghFrameProbe* probe) {
   const OutputSettings& output = request.output;
   const CameraMatrices camera =
       computeCamera(request.camera, cached.scene, output.width, output.height);
@@ -82,16 +83,14 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   if (probe != nullptr && lgh.enabled) finishProbe(shadowRatio, camera, *probe);
   {
     gl::ScopedGpuPass pass(timer, "composite");
-    compositePass_.run(output, lgh.enabled, shadowRatio, targets_);
+    compositePass_.run(output, pixels, lgh.enabled, shadowRatio, targets_);
   }
-  const Stopwatch readback;
-  report.image = readbackFinal(targets_);
-  const double readbackMs = readback.elapsedMs();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  timer.collect(report.timings);
-  if (lghLighting_) lghLighting_->collectTimings(report.timings);
-  shadows_.collectTimings(report);
-  report.timings.add("readback", TimingRow::Clock::Cpu, readbackMs);
+  glFlush();  // the GPU starts on the frame while the Vulkan side's timings are waited for
+  FrameReport deferred;  // rows timed by Vulkan: the light paths', then the shadow rays'
+  if (lghLighting_) lghLighting_->collectTimings(deferred.timings);
+  shadows_.collectTimings(deferred);
+  report.deferredRows = std::move(deferred.timings);
   report.decide("lighting", lgh.enabled ? "direct+lgh" : "direct");
   report.decide("lights", std::to_string(lights.size()));
 }
@@ -178,6 +177,25 @@ void FramePipeline::finishProbe(GLuint shadowRatio, const CameraMatrices& camera
           glm::vec2(m[0] / 255.0F, m[1] / 255.0F);
     }
   }
+}
+
+void FramePipeline::pack(OutputPixels pixels, FramePixels::Layout layout, GLuint packBuffer,
+                         gl::GpuTimer& timer) {
+  gl::ScopedGpuPass pass(timer, "readback");
+  packOutput(targets_, pixels, layout, packBuffer);
+}
+
+void FramePipeline::render(const RenderRequest& request, const CachedScene& cached,
+                           gl::GpuTimer& timer, FrameReport& report, LghFrameProbe* probe) {
+  draw(request, cached, timer, report, OutputPixels::LinearFloat, probe);
+  const Stopwatch readback;
+  report.image = readLinearOutput(targets_);
+  const double readbackMs = readback.elapsedMs();
+  timer.collect(report.timings);
+  report.timings.rows.insert(report.timings.rows.end(), report.deferredRows.rows.begin(),
+                             report.deferredRows.rows.end());
+  report.deferredRows = {};
+  report.timings.add("readback", TimingRow::Clock::Cpu, readbackMs);
 }
 
 }  // namespace lgh

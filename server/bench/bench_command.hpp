@@ -52,5 +52,7 @@ Command addShadowsCommand(CLI::App& app, const cli::ContextFlags& context);
 Command addHandoffCommand(CLI::App& app, const cli::ContextFlags& context);
 // `lgh-bench gi`: whole GI frames, Tables 2 and 3, Fig. 5, quality (server/bench/gi.cpp).
 Command addGiCommand(CLI::App& app, const cli::ContextFlags& context);
+// `lgh-bench png`: PNG encoders on the demo's display codes (server/bench/png.cpp).
+Command addPngCommand(CLI::App& app, const cli::ContextFlags& context);
 
 }  // namespace lgh::bench

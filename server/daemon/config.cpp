@@ -1,5 +1,7 @@
 #include "config.hpp"
 
+#include "lgh/task_pool.hpp"
+
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -33,6 +35,7 @@ struct RawFlags {
   std::size_t sceneCacheMb = 512;
   std::size_t maxBodyMb = 64;
   int testRenderDelayMs = 0;
+  std::size_t readbackMb = 512;
   std::string authTokenFile;
   std::size_t jobsMemoryMb = 1024;
   double jobTtlSeconds = 600.0;
@@ -111,6 +114,27 @@ void addRenderFlags(CLI::App& app, DaemonConfig& config, RawFlags& raw) {
                  "exits 3 for its supervisor to restart it; 0: no watchdog")
       ->envname("LGHD_WATCHDOG_SECONDS")
       ->check(CLI::Range(0.0, 86400.0))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--encode-threads", config.output.encodeThreads,
+                 "threads that encode finished frames (PNG/EXR) while the GPU renders the next "
+                 "ones; 0: one per hardware thread")
+      ->envname("LGHD_ENCODE_THREADS")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--frames-in-flight", config.output.framesInFlight,
+                 "frames between submission to the GPU and the end of their encoding; the render "
+                 "thread waits beyond it. 0: twice the encode threads")
+      ->envname("LGHD_FRAMES_IN_FLIGHT")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--readback-mb", raw.readbackMb,
+                 "memory for the pixels of frames in flight, MiB (a frame larger than this alone "
+                 "still renders, by itself)")
+      ->envname("LGHD_READBACK_MB")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str()
       ->group(group);
   app.add_option("--test-render-delay-ms", raw.testRenderDelayMs,
@@ -219,6 +243,7 @@ void applyRawFlags(const RawFlags& raw, DaemonConfig& config) {
   config.sceneCacheBytes = raw.sceneCacheMb << 20;
   config.limits.maxBodyBytes = raw.maxBodyMb << 20;
   config.testRenderDelay = std::chrono::milliseconds(raw.testRenderDelayMs);
+  config.output.readbackBytes = raw.readbackMb << 20;
   if (!raw.authTokenFile.empty()) config.authToken = readTokenFile(raw.authTokenFile);
   config.jobs.memoryBytes = raw.jobsMemoryMb << 20;
   config.jobs.ttl = fromSeconds<std::chrono::seconds>(raw.jobTtlSeconds);
@@ -227,6 +252,14 @@ void applyRawFlags(const RawFlags& raw, DaemonConfig& config) {
 }
 
 }  // namespace
+
+int OutputOptions::encoderCount() const {
+  return encodeThreads > 0 ? encodeThreads : lgh::TaskPool::hardwareThreads();
+}
+
+std::size_t OutputOptions::frameLimit() const {
+  return static_cast<std::size_t>(framesInFlight > 0 ? framesInFlight : 2 * encoderCount());
+}
 
 lgh::RendererOptions DaemonConfig::rendererOptions() const {
   lgh::RendererOptions options = lgh::cli::rendererOptions(context);

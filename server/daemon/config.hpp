@@ -38,6 +38,17 @@ struct JobLimits {
   std::chrono::milliseconds renderDeadline{600'000};
 };
 
+// The output pipeline (docs/DAEMON.md, "Frames in flight"): encoder threads, and how many frames
+// (and bytes of their pixels) may be between submission and the end of their encoding.
+struct OutputOptions {
+  int encodeThreads = 0;   // 0: one per hardware thread
+  int framesInFlight = 0;  // 0: twice the encoder threads
+  std::size_t readbackBytes = 512ULL << 20;
+
+  int encoderCount() const;
+  std::size_t frameLimit() const;
+};
+
 struct DaemonConfig {
   std::string host = "127.0.0.1";
   int port = 8080;  // 0: any free port (printed on stdout)
@@ -50,6 +61,7 @@ struct DaemonConfig {
   std::size_t sceneCacheBytes = 512ULL << 20;
   std::string logFormat = "json";  // json | text
   std::chrono::milliseconds testRenderDelay{0};
+  OutputOptions output;
   Limits limits;
   JobLimits jobs;
   std::vector<std::string> corsOrigins;  // empty: no CORS; "*": any origin

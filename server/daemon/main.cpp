@@ -54,6 +54,8 @@ nlohmann::json startupFields(const DaemonConfig& config, int port) {
           {"backend", config.context.backend},
           {"gpu", config.context.gpu},
           {"queue_depth", config.queueDepth},
+          {"encode_threads", config.output.encoderCount()},
+          {"frames_in_flight", config.output.frameLimit()},
           {"deadline_ms", config.deadline.count()},
           {"auth", !config.authToken.empty()}};
 }
@@ -62,7 +64,7 @@ int serve(const DaemonConfig& config) {
   ShutdownSupervisor::blockSignals();
   Metrics metrics;
   RenderQueue queue({config.rendererOptions(), static_cast<std::size_t>(config.queueDepth),
-                     config.testRenderDelay, config.watchdog},
+                     config.testRenderDelay, config.watchdog, config.output},
                     metrics);
   JobStore jobs(config.jobs, queue);
   HttpServer server;

@@ -20,10 +20,14 @@ std::string timingToken(const std::string& name) {
   return token;
 }
 
+// The queue wait first: the render queue's "queue" row when the table has one (it is its first
+// row), else `queueMs`.
 std::string serverTiming(const lgh::TimingTable& timings, double queueMs) {
-  std::string header = fmt::format("queue;dur={:.3f}", queueMs);
+  std::string header;
+  if (timings.get("queue") < 0.0) header = fmt::format("queue;dur={:.3f}", queueMs);
   for (const lgh::TimingRow& row : timings.rows) {
-    header += fmt::format(", {};dur={:.3f};desc=\"{}\"", timingToken(row.name), row.milliseconds,
+    if (!header.empty()) header += ", ";
+    header += fmt::format("{};dur={:.3f};desc=\"{}\"", timingToken(row.name), row.milliseconds,
                           row.clock == lgh::TimingRow::Clock::Gpu ? "gpu" : "cpu");
   }
   return header;

@@ -35,6 +35,9 @@ struct RendererOptions {
   std::size_t maxTriangles = 20'000'000;
   int maxTextureSize = 16384;
   std::size_t sceneCacheBytes = 512ULL << 20;  // GPU memory budget of the scene cache
+  // Frames whose GPU work and read-back may be under way at once (Renderer::submit): the GPU
+  // works on frame N while the CPU issues frame N + 1.
+  int framesInFlight = 2;
 };
 
 }  // namespace lgh

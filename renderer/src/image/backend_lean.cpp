@@ -1,6 +1,7 @@
-// Image I/O on libpng (PNG), OpenEXR 3.1 (EXR) and stb_image (JPEG, read only): small enough to
-// ship with the GPU bundle. Everything happens in memory: libpng through read/write callbacks,
-// OpenEXR through IStream/OStream subclasses over byte buffers.
+// Image I/O on libpng (PNG, read), OpenEXR 3.1 (EXR) and stb_image (JPEG, read only): small
+// enough to ship with the GPU bundle. PNG files are written by the shared encoder (png_writer.hpp).
+// Everything happens in memory: libpng through a read callback, OpenEXR through IStream/OStream
+// subclasses over byte buffers.
 #include <climits>
 #include <csetjmp>
 #include <cstdio>
@@ -54,7 +55,6 @@ struct PngIo {
   const std::uint8_t* input = nullptr;  // reading
   std::size_t inputSize = 0;
   std::size_t position = 0;
-  std::vector<std::uint8_t>* output = nullptr;  // writing
   char error[256] = {};
 };
 
@@ -74,36 +74,17 @@ void readFromMemory(png_structp png, png_bytep destination, std::size_t length) 
   io->position += length;
 }
 
-void appendToVector(png_structp png, png_bytep data, std::size_t length) {
-  auto* io = static_cast<PngIo*>(png_get_io_ptr(png));
-  bool outOfMemory = false;
-  try {
-    io->output->insert(io->output->end(), data, data + length);
-  } catch (const std::bad_alloc&) {
-    outOfMemory = true;
-  }
-  // png_error longjmps: never from inside the catch block.
-  if (outOfMemory) png_error(png, "out of memory");
-}
-
-void flushNothing(png_structp /*png*/) {}
-
-// Owns a png_struct and its png_info for reading or writing.
+// Owns a png_struct and its png_info for reading.
 class PngStructs {
  public:
-  PngStructs(PngIo& io, bool writing) : writing_(writing) {
-    png_ = writing ? png_create_write_struct(PNG_LIBPNG_VER_STRING, &io, onPngError, onPngWarning)
-                   : png_create_read_struct(PNG_LIBPNG_VER_STRING, &io, onPngError, onPngWarning);
+  explicit PngStructs(PngIo& io) {
+    png_ = png_create_read_struct(PNG_LIBPNG_VER_STRING, &io, onPngError, onPngWarning);
     if (png_) info_ = png_create_info_struct(png_);
     if (!png_ || !info_) {
       destroy();
       throw Error(ErrorCode::Internal, "libpng could not allocate its structures");
     }
-    if (writing) {
-      png_set_write_fn(png_, &io, appendToVector, flushNothing);
-    } else {
-      png_set_read_fn(png_, &io, readFromMemory);
-    }
+    png_set_read_fn(png_, &io, readFromMemory);
   }
   PngStructs(const PngStructs&) = delete;
   PngStructs& operator=(const PngStructs&) = delete;
@@ -113,65 +94,11 @@ class PngStructs {
   png_infop info() const { return info_; }
 
  private:
-  void destroy() {
-    png_infopp info = info_ ? &info_ : nullptr;
-    if (writing_) {
-      png_destroy_write_struct(&png_, info);
-    } else {
-      png_destroy_read_struct(&png_, info, nullptr);
-    }
-  }
+  void destroy() { png_destroy_read_struct(&png_, info_ ? &info_ : nullptr, nullptr); }
 
-  bool writing_;
   png_structp png_ = nullptr;
   png_infop info_ = nullptr;
 };
-
-constexpr int pngColorType(int channels) {
-  switch (channels) {
-    case 1:
-      return PNG_COLOR_TYPE_GRAY;
-    case 2:
-      return PNG_COLOR_TYPE_GRAY_ALPHA;
-    case 3:
-      return PNG_COLOR_TYPE_RGB;
-    default:
-      return PNG_COLOR_TYPE_RGB_ALPHA;
-  }
-}
-
-// ---- PNG encoding ----
-
-bool writePngGuarded(png_structp png, png_infop info, const Image8& image, int compressionLevel,
-                     png_textp text, int textCount, png_bytepp rows) {
-  if (setjmp(png_jmpbuf(png))) return false;
-  png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
-               static_cast<png_uint_32>(image.height), 8, pngColorType(image.channels),
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_set_compression_level(png, compressionLevel);
-  png_set_compression_strategy(png, detail::kPngZlibStrategy);
-  png_set_filter(png, PNG_FILTER_TYPE_BASE, detail::kPngFilters);
-  // OpenImageIO always writes the (zero) image offset; so do we, for byte-identical files.
-  png_set_oFFs(png, info, 0, 0, PNG_OFFSET_PIXEL);
-  if (textCount > 0) png_set_text(png, info, text, textCount);
-  png_write_info(png, info);
-  png_write_image(png, rows);
-  png_write_end(png, info);
-  return true;
-}
-
-// tEXt chunks (uncompressed Latin-1 by the PNG spec; we store the bytes as given, as OIIO does).
-// The pointers refer into `metadata`, which outlives the write.
-std::vector<png_text> textChunks(const ImageMetadata& metadata) {
-  std::vector<png_text> chunks(metadata.size());
-  for (std::size_t i = 0; i < metadata.size(); ++i) {
-    chunks[i].compression = PNG_TEXT_COMPRESSION_NONE;
-    chunks[i].key = const_cast<char*>(metadata[i].first.c_str());
-    chunks[i].text = const_cast<char*>(metadata[i].second.c_str());
-    chunks[i].text_length = metadata[i].second.size();
-  }
-  return chunks;
-}
 
 // ---- PNG decoding ----
 
@@ -240,7 +167,7 @@ Pixels8 readPng(const std::uint8_t* data, std::size_t size, bool rgba, const std
   PngIo io;
   io.input = data;
   io.inputSize = size;
-  PngStructs structs(io, false);
+  PngStructs structs(io);
   PngLayout layout;
   if (!readPngHeaderGuarded(structs.png(), structs.info(), rgba, layout)) {
     throw brokenImage("PNG", io.error, what);
@@ -340,8 +267,8 @@ constexpr const char* kRgbaChannels[] = {"R", "G", "B", "A"};
 // ---- OpenEXR encoding ----
 
 // The pixels as the file stores them: OpenEXR's scanline writer converts between frame buffer and
-// file pixel types only on read, so half output needs a half buffer (Imath's conversion rounds to
-// nearest even, as OpenImageIO's does).
+// file pixel types only on read, so a half file from floats needs a half buffer (Imath's
+// conversion rounds to nearest even, as OpenImageIO's does). Half pixels are stored as they are.
 struct ExrPixels {
   Imf::PixelType type;
   std::vector<Imath::half> halves;
@@ -349,15 +276,18 @@ struct ExrPixels {
   std::size_t valueSize;
 };
 
-ExrPixels filePixels(const FloatImage& image, bool halfFloat) {
-  if (!halfFloat) return {Imf::FLOAT, {}, image.rgba.data(), sizeof(float)};
-  ExrPixels pixels{Imf::HALF, std::vector<Imath::half>(image.rgba.begin(), image.rgba.end()),
-                   nullptr, sizeof(Imath::half)};
+ExrPixels filePixels(const LinearRgbaView& image, bool halfFloat) {
+  if (image.halfFloat) return {Imf::HALF, {}, image.pixels, sizeof(Imath::half)};
+  if (!halfFloat) return {Imf::FLOAT, {}, image.pixels, sizeof(float)};
+  const auto* floats = static_cast<const float*>(image.pixels);
+  const std::size_t count = static_cast<std::size_t>(image.width) * image.height * 4;
+  ExrPixels pixels{Imf::HALF, std::vector<Imath::half>(floats, floats + count), nullptr,
+                   sizeof(Imath::half)};
   pixels.data = pixels.halves.data();
   return pixels;
 }
 
-void writeExr(const FloatImage& image, bool halfFloat, const ImageMetadata& metadata,
+void writeExr(const LinearRgbaView& image, bool halfFloat, const ImageMetadata& metadata,
               std::vector<std::uint8_t>& bytes) {
   const ExrPixels pixels = filePixels(image, halfFloat);
   Imf::Header header(image.width, image.height);
@@ -440,32 +370,9 @@ Decoded toDecoded(Pixels8&& image) {
 
 const char* backendName() { return "lean"; }
 
-std::vector<std::uint8_t> encodePng(const Image8& image, const ImageMetadata& metadata,
-                                    int compressionLevel) {
-  detail::checkImage8(image);
-  detail::checkPngCompression(compressionLevel);
-  detail::checkMetadata(metadata, MetadataFormat::Png);
-  std::vector<std::uint8_t> bytes;
-  PngIo io;
-  io.output = &bytes;
-  PngStructs structs(io, true);
-  std::vector<png_text> text = textChunks(metadata);
-  const std::size_t rowBytes = static_cast<std::size_t>(image.width) * image.channels;
-  std::vector<png_bytep> rows(static_cast<std::size_t>(image.height));
-  for (std::size_t y = 0; y < rows.size(); ++y) {
-    // libpng's row type is non-const, but it does not modify rows it writes.
-    rows[y] = const_cast<png_bytep>(&image.pixels[y * rowBytes]);
-  }
-  if (!writePngGuarded(structs.png(), structs.info(), image, compressionLevel, text.data(),
-                       static_cast<int>(text.size()), rows.data())) {
-    throw Error(ErrorCode::Internal, fmt::format("libpng could not encode: {}", io.error));
-  }
-  return bytes;
-}
-
-std::vector<std::uint8_t> encodeExr(const FloatImage& image, bool halfFloat,
+std::vector<std::uint8_t> encodeExr(const LinearRgbaView& image, bool halfFloat,
                                     const ImageMetadata& metadata) {
-  detail::checkFloatImage(image);
+  detail::checkLinearRgbaView(image, halfFloat);
   detail::checkMetadata(metadata, MetadataFormat::Exr);
   std::vector<std::uint8_t> bytes;
   try {

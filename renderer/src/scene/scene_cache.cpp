@@ -7,6 +7,7 @@
 
 #include "core/stopwatch.hpp"
 #include "gl/gl_api.hpp"
+#include "lgh/error.hpp"
 #include "scene/asset_path.hpp"
 #include "scene/atrium_scene.hpp"
 #include "scene/demo_scene.hpp"
@@ -82,10 +83,13 @@ std::string SceneCache::sourceKey(const SceneSource& source) const {
   return {};
 }
 
-Scene SceneCache::load(const SceneSource& source, const SceneLoadOptions& options) const {
+namespace {
+
+Scene loadScene(const RendererOptions& rendererOptions, const SceneSource& source,
+                const SceneLoadOptions& options) {
   SceneLoadLimits limits;
-  limits.maxTriangles = options_.maxTriangles;
-  limits.maxTextureSize = options_.maxTextureSize;
+  limits.maxTriangles = rendererOptions.maxTriangles;
+  limits.maxTextureSize = rendererOptions.maxTextureSize;
   switch (source.kind) {
     case SceneSource::Kind::Builtin:
       return source.builtin == BuiltinScene::Atrium ? makeAtriumScene() : makeDemoScene();
@@ -96,9 +100,49 @@ Scene SceneCache::load(const SceneSource& source, const SceneLoadOptions& option
     case SceneSource::Kind::UploadedGltf:
       return loadGltfFromMemory(source.gltfFileName, source.uploadedFiles, limits, options);
     case SceneSource::Kind::AssetPath:
-      return loadGltfFile(options_.assetRoot, source.assetPath, limits, options);
+      return loadGltfFile(rendererOptions.assetRoot, source.assetPath, limits, options);
   }
   return makeDemoScene();
+}
+
+}  // namespace
+
+SceneCache::Parsed SceneCache::parse(const RendererOptions& rendererOptions,
+                                     const SceneSource& source, const SceneLoadOptions& options) {
+  const Stopwatch timer;
+  Parsed parsed{loadScene(rendererOptions, source, options), 0.0};
+  parsed.loadMs = timer.elapsedMs();
+  return parsed;
+}
+
+void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& options) {
+  std::string key;
+  try {
+    key = keyFor(source, options);
+  } catch (const Error&) {
+    return;  // a bad path: get() reports it
+  }
+  if (key.empty() || key == "demo" || prefetches_.contains(key)) return;
+  for (const Slot& slot : slots_) {
+    if (slot.key == key) return;
+  }
+  // When full, finished parses nobody asked for yet make room (their request was cancelled, or
+  // comes later than the hints after it).
+  if (prefetches_.size() >= kMaxPrefetches) {
+    std::erase_if(prefetches_, [](const auto& entry) {
+      return entry.second.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+    });
+  }
+  if (prefetches_.size() >= kMaxPrefetches) return;
+  try {
+    prefetches_.emplace(
+        key, std::async(std::launch::async, [rendererOptions = options_, source, options] {
+          return parse(rendererOptions, source, options);
+        }));
+  } catch (const std::system_error& error) {
+    spdlog::warn("scene cache: no thread for a prefetch ({}); the scene is parsed when drawn",
+                 error.what());
+  }
 }
 
 SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOptions& options) {
@@ -114,10 +158,18 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
     return lookup;
   }
   ++misses_;
-  const Stopwatch loadTimer;
   auto entry = std::make_shared<CachedScene>();
-  entry->scene = load(source, options);
-  lookup.loadMs = loadTimer.elapsedMs();
+  Parsed parsed;
+  if (auto pending = prefetches_.find(key); pending != prefetches_.end()) {
+    std::future<Parsed> parsing = std::move(pending->second);
+    prefetches_.erase(pending);
+    parsed = parsing.get();  // rethrows the parse's error
+    lookup.prefetched = true;
+  } else {
+    parsed = parse(options_, source, options);
+  }
+  entry->scene = std::move(parsed.scene);
+  lookup.loadMs = parsed.loadMs;
   const Stopwatch uploadTimer;
   entry->gpu = std::make_unique<GpuScene>(entry->scene, maxAnisotropy_);
   lookup.uploadMs = uploadTimer.elapsedMs();

@@ -5,7 +5,9 @@
 #pragma once
 
 #include <cstdint>
+#include <future>
 #include <list>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -55,21 +57,35 @@ class SceneCache {
   struct Lookup {
     std::shared_ptr<CachedScene> entry;
     bool hit = false;
-    double loadMs = 0.0;
+    double loadMs = 0.0;  // parsing, here or on a prefetch thread
     double uploadMs = 0.0;
+    bool prefetched = false;  // parsed by prefetch() ahead of this get()
   };
   // Loads on a miss; throws lgh::Error for bad assets (nothing is cached then). The options (pose,
   // material variant, extension tolerance) are part of the key: each pose is its own entry.
   Lookup get(const SceneSource& source, const SceneLoadOptions& options = {});
   SceneCacheStats stats() const;
 
+  // Starts parsing `source` on a thread of its own unless it is cached or already being parsed;
+  // the get() that asks for it then waits for that parse instead of parsing (its errors come
+  // from that get()). The upload stays for get(), on the GL thread. At most kMaxPrefetches parses
+  // run at once; a hint beyond that is dropped.
+  void prefetch(const SceneSource& source, const SceneLoadOptions& options = {});
+  static constexpr std::size_t kMaxPrefetches = 2;
+
   // Content key of a source ("" when it cannot be keyed; then it is never cached).
   std::string keyFor(const SceneSource& source, const SceneLoadOptions& options = {}) const;
 
  private:
-  Scene load(const SceneSource& source, const SceneLoadOptions& options) const;
+  struct Parsed {
+    Scene scene;
+    double loadMs = 0.0;
+  };
+  static Parsed parse(const RendererOptions& rendererOptions, const SceneSource& source,
+                      const SceneLoadOptions& options);
   std::string sourceKey(const SceneSource& source) const;
   void evictOverBudget();
+  std::map<std::string, std::future<Parsed>> prefetches_;  // by key
 
   RendererOptions options_;
   float maxAnisotropy_ = 1.0F;
