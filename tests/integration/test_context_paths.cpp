@@ -144,17 +144,17 @@ TEST(ContextPaths, RenderersShareAThreadAndADisplay) {
 // later one fail with Unavailable, and a new renderer renders as before.
 TEST(ContextPaths, ALostContextEndsTheRendererAndANewOneRenders) {
   const auto request = lgh::parseRenderRequest(R"({"output": {"width": 24, "height": 16}})");
-  lgh::FloatImage reference;
+  std::vector<std::uint8_t> reference;  // the PNG's bytes
   {
     lgh::Renderer clean(lgh::test::rendererOptions());
-    reference = clean.render(request).image;
+    reference = clean.render(request).encoded;
   }
   setenv("LGH_DEBUG_CONTEXT_LOSS_AFTER", "2", 1);
   {
     lgh::Renderer renderer(lgh::test::rendererOptions());
     unsetenv("LGH_DEBUG_CONTEXT_LOSS_AFTER");
-    EXPECT_TRUE(renderer.render(request).image.rgba == reference.rgba);
-    EXPECT_TRUE(renderer.render(request).image.rgba == reference.rgba);
+    EXPECT_TRUE(renderer.render(request).encoded == reference);
+    EXPECT_TRUE(renderer.render(request).encoded == reference);
     EXPECT_TRUE(renderer.healthy());
     for (int i = 0; i < 2; ++i) {
       try {
@@ -167,7 +167,7 @@ TEST(ContextPaths, ALostContextEndsTheRendererAndANewOneRenders) {
     }
   }
   lgh::Renderer again(lgh::test::rendererOptions());
-  EXPECT_TRUE(again.render(request).image.rgba == reference.rgba);
+  EXPECT_TRUE(again.render(request).encoded == reference);
 }
 
 TEST(ContextPathsDeathTest, GlCallWithoutContextNamesTheCall) {
