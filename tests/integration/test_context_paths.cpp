@@ -143,18 +143,23 @@ TEST(ContextPaths, RenderersShareAThreadAndADisplay) {
 // A GPU reset ends a renderer (the test hook reports one after two frames): that frame and every
 // later one fail with Unavailable, and a new renderer renders as before.
 TEST(ContextPaths, ALostContextEndsTheRendererAndANewOneRenders) {
-  const auto request = lgh::parseRenderRequest(R"({"output": {"width": 24, "height": 16}})");
-  std::vector<std::uint8_t> reference;  // the PNG's bytes
+  // Linear pixels, not file bytes: the files' metadata carry the frame's timings.
+  const auto request =
+      lgh::parseRenderRequest(R"({"output": {"width": 24, "height": 16, "format": "exr-float"}})");
+  const auto pixelsOf = [](const lgh::RenderResult& result) {
+    return result.pixels.toFloatImage().rgba;
+  };
+  std::vector<float> reference;
   {
     lgh::Renderer clean(lgh::test::rendererOptions());
-    reference = clean.render(request).encoded;
+    reference = pixelsOf(clean.render(request));
   }
   setenv("LGH_DEBUG_CONTEXT_LOSS_AFTER", "2", 1);
   {
     lgh::Renderer renderer(lgh::test::rendererOptions());
     unsetenv("LGH_DEBUG_CONTEXT_LOSS_AFTER");
-    EXPECT_TRUE(renderer.render(request).encoded == reference);
-    EXPECT_TRUE(renderer.render(request).encoded == reference);
+    EXPECT_TRUE(pixelsOf(renderer.render(request)) == reference);
+    EXPECT_TRUE(pixelsOf(renderer.render(request)) == reference);
     EXPECT_TRUE(renderer.healthy());
     for (int i = 0; i < 2; ++i) {
       try {
@@ -167,7 +172,7 @@ TEST(ContextPaths, ALostContextEndsTheRendererAndANewOneRenders) {
     }
   }
   lgh::Renderer again(lgh::test::rendererOptions());
-  EXPECT_TRUE(again.render(request).encoded == reference);
+  EXPECT_TRUE(pixelsOf(again.render(request)) == reference);
 }
 
 TEST(ContextPathsDeathTest, GlCallWithoutContextNamesTheCall) {

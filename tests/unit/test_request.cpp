@@ -351,7 +351,7 @@ TEST(RequestErrors, UnknownPropertyListsTheAllowedOnes) {
 TEST(RequestErrors, SceneWithTwoKeysSaysWhichAreAllowed) {
   const Error error = parseError(std::string(R"({"scene": {"demo": true, "asset": "a.glb"}})"));
   EXPECT_EQ(error.message(),
-            "must have exactly one property (asset, builtin, demo or glb_base64), got 2");
+            "must have exactly one of the properties asset, builtin, demo or glb_base64, got 2");
 }
 
 TEST(RequestErrors, NonFiniteNumbersInJsonBuiltInCode) {
@@ -610,7 +610,7 @@ TEST(RequestParse, SchemaDefaultsMatchStructDefaults) {
       },
       defaults);
   expectDefaults(
-      definitions.at("render-settings.schema.json").at("definitions").at("gi").at("properties"),
+      definitions.at("render-settings.schema.json").at("$defs").at("gi").at("properties"),
       [](json o) {
         return json{{"settings", {{"gi", o}}}};
       },

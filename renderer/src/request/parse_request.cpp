@@ -406,11 +406,13 @@ void checkSceneSourceCount(const json& request) {
   const auto it = request.find("scene");
   if (it == request.end() || !it->is_object()) return;  // the schema reports other types
   std::size_t sources = 0;
-  for (const char* key : {"asset", "demo", "glb_base64"}) sources += it->contains(key) ? 1 : 0;
+  for (const char* key : {"asset", "builtin", "demo", "glb_base64"}) {
+    sources += it->contains(key) ? 1 : 0;
+  }
   if (sources != 1) {
     throw Error(ErrorCode::BadRequest,
-                fmt::format("must have exactly one of the properties asset, demo or glb_base64, "
-                            "got {}",
+                fmt::format("must have exactly one of the properties asset, builtin, demo or "
+                            "glb_base64, got {}",
                             sources),
                 "/scene");
   }
