@@ -63,6 +63,9 @@ int serve(const DaemonConfig& config) {
   HttpServer server;
   DaemonContext context{config, config.requestLimits(), queue, metrics};
   configureServer(server, context);
+  server.setRejectionListener([&metrics](const FramedServer::Rejection& rejection) {
+    metrics.recordRequest("other", "", rejection.error.status, 0.0);
+  });
 
   const int port = bindServer(server, config.host, config.port);
   if (port < 0) {

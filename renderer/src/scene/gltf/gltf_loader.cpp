@@ -19,15 +19,16 @@
 #include <fstream>
 #include <functional>
 #include <new>
-#include <optional>
 #include <set>
 #include <string_view>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "core/json_shape.hpp"
 #include "lgh/error.hpp"
 #include "scene/asset_path.hpp"
+#include "scene/gltf/glb_container.hpp"
 #include "scene/gltf/image_decoding.hpp"
 #include "scene/gltf/load_context.hpp"
 #include "scene/gltf/scene_builder.hpp"
@@ -45,29 +46,6 @@ using json = nlohmann::json;
 // Extensions this loader implements; a REQUIRED extension outside this set fails the load.
 const std::set<std::string, std::less<>> kSupportedExtensions = {
     "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization"};
-
-constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
-constexpr std::uint32_t kGlbJsonChunk = 0x4E4F534A;
-
-std::uint32_t readLittleEndian32(const std::uint8_t* bytes) {
-  return static_cast<std::uint32_t>(bytes[0]) | (static_cast<std::uint32_t>(bytes[1]) << 8U) |
-         (static_cast<std::uint32_t>(bytes[2]) << 16U) |
-         (static_cast<std::uint32_t>(bytes[3]) << 24U);
-}
-
-bool isGlb(const std::vector<std::uint8_t>& bytes) {
-  return bytes.size() >= 4 && readLittleEndian32(bytes.data()) == kGlbMagic;
-}
-
-// The JSON chunk of a GLB; nullopt when the header is broken (tinygltf then says how).
-std::optional<std::string_view> glbJson(const std::vector<std::uint8_t>& bytes) {
-  if (bytes.size() < 20 || readLittleEndian32(bytes.data() + 16) != kGlbJsonChunk) {
-    return std::nullopt;
-  }
-  const std::uint32_t length = readLittleEndian32(bytes.data() + 12);
-  if (length > bytes.size() - 20) return std::nullopt;
-  return std::string_view(reinterpret_cast<const char*>(bytes.data() + 20), length);
-}
 
 std::size_t jsonSize(const json& value, const char* key, std::size_t fallback = 0) {
   const auto it = value.find(key);
@@ -121,7 +99,15 @@ void checkExtensions(const json& document, LoadContext& ctx) {
   }
 }
 
+// glTF's own structure nests 7 levels deep (/meshes/0/primitives/0/targets/0/POSITION); extras
+// and extensions may nest further, but not without bound. The value count bounds what the JSON
+// costs in memory, here and again inside tinygltf.
+constexpr JsonShapeLimits kGltfJsonLimits{64, 4'000'000};
+
 void precheckJson(std::string_view text, LoadContext& ctx) {
+  if (const auto excess = findJsonShapeExcess(text, kGltfJsonLimits)) {
+    tooLarge(ctx, "the glTF JSON " + excess->describe(kGltfJsonLimits));
+  }
   json document;
   try {
     document = json::parse(text.begin(), text.end());
@@ -156,11 +142,11 @@ void addParserWarnings(LoadContext& ctx, const std::string& text) {
 }
 
 tinygltf::Model parseModel(const std::vector<std::uint8_t>& bytes, LoadContext& ctx) {
-  const bool binary = isGlb(bytes);
-  if (!binary) {
+  const bool binary = hasGlbMagic(bytes);
+  if (binary) {
+    precheckJson(readGlbContainer(bytes, ctx).json, ctx);
+  } else {
     precheckJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), ctx);
-  } else if (const auto text = glbJson(bytes)) {
-    precheckJson(*text, ctx);
   }
   tinygltf::TinyGLTF parser;
   parser.SetFsCallbacks(sandboxedFileCallbacks(ctx));
