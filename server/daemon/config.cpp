@@ -120,6 +120,8 @@ void addLimitFlags(CLI::App& app, Limits& limits, RawFlags& raw) {
       "LGHD_MAX_TRIANGLES");
   add("--max-texture-size", limits.maxTextureSize, "texture width or height, pixels",
       "LGHD_MAX_TEXTURE_SIZE");
+  add("--max-texture-mb", limits.maxTextureMb,
+      "all texture images of one scene, decoded to RGBA8, MiB", "LGHD_MAX_TEXTURE_MB");
   add("--max-batch", limits.maxBatch, "thumbnails in one batch (assets x views)", "LGHD_MAX_BATCH");
 }
 
@@ -161,6 +163,7 @@ lgh::RendererOptions DaemonConfig::rendererOptions() const {
   lgh::RendererOptions options = lgh::cli::rendererOptions(context);
   options.maxTriangles = limits.maxTriangles;
   options.maxTextureSize = limits.maxTextureSize;
+  options.maxTextureBytes = limits.maxTextureMb << 20;
   options.sceneCacheBytes = sceneCacheBytes;
   return options;
 }

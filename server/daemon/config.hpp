@@ -24,6 +24,7 @@ struct Limits {
   int maxVpls = 1 << 20;
   std::size_t maxTriangles = 5'000'000;
   int maxTextureSize = 8192;
+  std::size_t maxTextureMb = 2048;  // all textures of one scene, decoded
   int maxBatch = 64;
 };
 

@@ -1,5 +1,7 @@
 #include "connection_stream.hpp"
 
+#include "http_framing.hpp"
+
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <poll.h>
@@ -43,16 +45,6 @@ void addressOf(const sockaddr_storage& address, std::string& ip, int& port) {
     port = ntohs(v6.sin6_port);
   }
   ip = text.data();
-}
-
-// Where the head that starts at `text` ends (one past its empty line), or npos.
-std::size_t headLength(std::string_view text) {
-  for (std::size_t lf = text.find('\n'); lf != std::string_view::npos;
-       lf = text.find('\n', lf + 1)) {
-    if (lf + 1 < text.size() && text[lf + 1] == '\n') return lf + 2;
-    if (lf + 2 < text.size() && text[lf + 1] == '\r' && text[lf + 2] == '\n') return lf + 3;
-  }
-  return std::string_view::npos;
 }
 
 }  // namespace
@@ -155,7 +147,7 @@ ConnectionStream::Head ConnectionStream::readHead(std::size_t maxBytes) {
     while (buffered() >= 1 && buffer_[position_] == '\n') ++position_;
     const std::string_view pending(buffer_.data() + position_, buffered());
     const std::size_t from = searched >= 2 ? searched - 2 : 0;
-    const std::size_t length = headLength(pending.substr(from));
+    const std::size_t length = findHeadEnd(pending.substr(from));
     if (length != std::string_view::npos) {
       headEnd_ = bytesRead_ + from + length;
       return {HeadStatus::Complete, pending.substr(0, from + length)};

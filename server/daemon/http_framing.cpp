@@ -263,6 +263,15 @@ std::optional<FramingError> checkFraming(const std::vector<Field>& fields,
 
 }  // namespace
 
+std::size_t findHeadEnd(std::string_view bytes) {
+  for (std::size_t lf = bytes.find('\n'); lf != std::string_view::npos;
+       lf = bytes.find('\n', lf + 1)) {
+    if (lf + 1 < bytes.size() && bytes[lf + 1] == '\n') return lf + 2;
+    if (lf + 2 < bytes.size() && bytes[lf + 1] == '\r' && bytes[lf + 2] == '\n') return lf + 3;
+  }
+  return std::string_view::npos;
+}
+
 std::variant<RequestFraming, FramingError> checkRequestHead(std::string_view head,
                                                             const FramingLimits& limits) {
   if (head.size() > limits.maxHeadBytes) {

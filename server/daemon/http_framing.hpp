@@ -43,6 +43,11 @@ struct RequestFraming {
   bool http10 = false;
 };
 
+// Where the request head at the start of `bytes` ends: one past its first empty line, a line
+// ended by LF or by CRLF (so that a bare-LF head is found, and refused, rather than waited for).
+// npos when no empty line has come yet.
+std::size_t findHeadEnd(std::string_view bytes);
+
 // Checks a complete request head: `head` runs up to and including the CRLF CRLF that ends it.
 // Returns the framing, or the reason to refuse the request.
 std::variant<RequestFraming, FramingError> checkRequestHead(std::string_view head,

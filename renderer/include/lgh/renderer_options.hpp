@@ -34,6 +34,7 @@ struct RendererOptions {
   std::filesystem::path assetRoot = ".";
   std::size_t maxTriangles = 20'000'000;
   int maxTextureSize = 16384;
+  std::size_t maxTextureBytes = 4ULL << 30;  // all textures of one scene, decoded to RGBA8
   std::size_t sceneCacheBytes = 512ULL << 20;  // GPU memory budget of the scene cache
 };
 

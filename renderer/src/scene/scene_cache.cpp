@@ -63,6 +63,7 @@ Scene SceneCache::load(const SceneSource& source) const {
   SceneLoadLimits limits;
   limits.maxTriangles = options_.maxTriangles;
   limits.maxTextureSize = options_.maxTextureSize;
+  limits.maxTextureBytes = options_.maxTextureBytes;
   switch (source.kind) {
     case SceneSource::Kind::Demo:
       return makeDemoScene();

@@ -15,7 +15,9 @@
 //    the asset, BadRequest for the asset path itself, as resolveAssetPath throws), unsupported
 //    REQUIRED extensions (Invalid, naming them), wrong accessor type/componentType for an
 //    attribute, accessor or bufferView out of bounds, index >= vertex count, non-finite POSITION,
-//    node cycles or hierarchies deeper than 64, limits exceeded (TooLarge), an image used by a
+//    node cycles or hierarchies deeper than 64, limits exceeded (TooLarge: SceneLoadLimits, JSON
+//    nesting deeper than 64 levels or more than 4 million values), an invalid GLB container
+//    (version, lengths, chunk types and alignment), an image used by a
 //    material that cannot be decoded (Invalid, naming it), no triangle geometry (Invalid).
 //  - repairs: points/lines primitives skipped; a trailing partial triangle dropped; missing
 //    normals -> flat normals (glTF's rule); zero/NaN normals -> area-weighted smooth normals;
@@ -38,6 +40,10 @@ namespace lgh {
 struct SceneLoadLimits {
   std::size_t maxTriangles = 20'000'000;  // drawn triangles (instances count)
   int maxTextureSize = 16384;             // largest width or height of a texture image
+  // All texture images of the asset together, decoded to RGBA8 (every image is decoded, used or
+  // not): a few KB of PNG or JPEG can claim a large image, and an asset can name the same data
+  // in any number of images.
+  std::size_t maxTextureBytes = 4ULL << 30;
   std::size_t maxFileBytes = 1ULL << 30;  // per file: the asset and each side file
 };
 

@@ -34,6 +34,7 @@ struct LoadContext {
   std::map<std::string, Error> fileErrors;  // missing / too large side files, by URI
   std::map<int, Image8> images;             // decoded, by glTF image index
   std::map<int, Error> imageErrors;         // decode failures, by glTF image index
+  std::size_t decodedTextureBytes = 0;      // of all images decoded so far
   std::vector<std::string> warnings;
 
   void warnOnce(const std::string& warning) {
