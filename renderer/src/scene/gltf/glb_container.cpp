@@ -70,18 +70,40 @@ GlbChunks readGlbContainer(const std::vector<std::uint8_t>& bytes, const LoadCon
   GlbChunks chunks;
   chunks.json =
       std::string_view(reinterpret_cast<const char*>(bytes.data() + json.payload), json.length);
-  const std::size_t next = json.payload + json.length;
-  if (next == bytes.size()) return chunks;
-  const Chunk bin = readChunk(bytes, next, "second (BIN)", ctx);
-  if (bin.type != kBinChunk) {
-    invalid(ctx, fmt::format("invalid GLB: the second chunk has type 0x{:08x}, not BIN", bin.type));
+  for (std::size_t next = json.payload + json.length; next < bytes.size();) {
+    const bool second = next == json.payload + json.length;
+    const Chunk chunk = readChunk(bytes, next, second ? "second" : "a further", ctx);
+    if (chunk.type == kBinChunk) {
+      if (!second) {
+        invalid(ctx,
+                fmt::format("invalid GLB: a BIN chunk at byte {} is not the second chunk", next));
+      }
+      chunks.binOffset = chunk.payload;
+      chunks.binBytes = chunk.length;
+    } else if (chunk.type == kJsonChunk) {
+      invalid(ctx, fmt::format("invalid GLB: a second JSON chunk at byte {}", next));
+    } else {
+      chunks.unknownChunkTypes.push_back(chunk.type);
+    }
+    next = chunk.payload + chunk.length;
   }
-  if (bin.payload + bin.length != bytes.size()) {
-    invalid(ctx, fmt::format("invalid GLB: {} bytes follow the BIN chunk",
-                             bytes.size() - bin.payload - bin.length));
-  }
-  chunks.binBytes = bin.length;
   return chunks;
+}
+
+std::vector<std::uint8_t> withoutUnknownChunks(const std::vector<std::uint8_t>& bytes,
+                                               const GlbChunks& chunks) {
+  const auto jsonStart =
+      static_cast<std::size_t>(chunks.json.data() - reinterpret_cast<const char*>(bytes.data()));
+  std::vector<std::uint8_t> clean(
+      bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(jsonStart + chunks.json.size()));
+  if (chunks.binBytes > 0) {
+    const auto binHeader = static_cast<std::ptrdiff_t>(chunks.binOffset - kChunkHeaderBytes);
+    clean.insert(clean.end(), bytes.begin() + binHeader,
+                 bytes.begin() + static_cast<std::ptrdiff_t>(chunks.binOffset + chunks.binBytes));
+  }
+  const auto length = static_cast<std::uint32_t>(clean.size());
+  for (int i = 0; i < 4; ++i) clean[8 + i] = static_cast<std::uint8_t>(length >> (8U * i));
+  return clean;
 }
 
 }  // namespace lgh::gltf

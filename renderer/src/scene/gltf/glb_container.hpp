@@ -17,12 +17,20 @@ bool hasGlbMagic(const std::vector<std::uint8_t>& bytes);
 
 struct GlbChunks {
   std::string_view json;
-  std::size_t binBytes = 0;  // the BIN chunk's payload (0: no BIN chunk)
+  std::size_t binOffset = 0;  // the BIN chunk's payload (binBytes 0: no BIN chunk)
+  std::size_t binBytes = 0;
+  // Chunks of unknown types after those two, which the specification says to ignore (tinygltf
+  // refuses them; withoutUnknownChunks makes the copy it gets).
+  std::vector<std::uint32_t> unknownChunkTypes;
 };
 
 // Throws lgh::Error(Invalid) naming what is wrong: version other than 2, a total length that is
 // not the asset's size, chunk lengths past the end or not a multiple of 4, a first chunk that is
-// not JSON, a second that is not BIN, anything after the BIN chunk.
+// not JSON, a BIN chunk that is not the second.
 GlbChunks readGlbContainer(const std::vector<std::uint8_t>& bytes, const LoadContext& ctx);
+
+// The GLB with only its JSON and BIN chunks (and its total length to match).
+std::vector<std::uint8_t> withoutUnknownChunks(const std::vector<std::uint8_t>& bytes,
+                                               const GlbChunks& chunks);
 
 }  // namespace lgh::gltf

@@ -19,6 +19,7 @@
 #include <fstream>
 #include <functional>
 #include <new>
+#include <optional>
 #include <set>
 #include <string_view>
 
@@ -28,6 +29,7 @@
 #include "core/json_shape.hpp"
 #include "lgh/error.hpp"
 #include "scene/asset_path.hpp"
+#include "scene/gltf/document_check.hpp"
 #include "scene/gltf/glb_container.hpp"
 #include "scene/gltf/image_decoding.hpp"
 #include "scene/gltf/load_context.hpp"
@@ -46,38 +48,6 @@ using json = nlohmann::json;
 // Extensions this loader implements; a REQUIRED extension outside this set fails the load.
 const std::set<std::string, std::less<>> kSupportedExtensions = {
     "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization"};
-
-std::size_t jsonSize(const json& value, const char* key, std::size_t fallback = 0) {
-  const auto it = value.find(key);
-  return it != value.end() && it->is_number_unsigned() ? it->get<std::size_t>() : fallback;
-}
-
-// tinygltf reads an image's bufferView bytes without checking that they lie inside the buffer;
-// check that here, on the JSON, before it gets the chance.
-void checkImageBufferViews(const json& document, const LoadContext& ctx) {
-  const json empty = json::array();
-  const json& images = document.contains("images") ? document["images"] : empty;
-  const json& views = document.contains("bufferViews") ? document["bufferViews"] : empty;
-  const json& buffers = document.contains("buffers") ? document["buffers"] : empty;
-  for (std::size_t i = 0; i < images.size(); ++i) {
-    const std::size_t view = jsonSize(images[i], "bufferView", SIZE_MAX);
-    if (view == SIZE_MAX) continue;
-    if (view >= views.size()) {
-      invalid(ctx, fmt::format("invalid glTF: /images/{}/bufferView names bufferView {}, which "
-                               "does not exist",
-                               i, view));
-    }
-    const std::size_t buffer = jsonSize(views[view], "buffer", SIZE_MAX);
-    const std::size_t offset = jsonSize(views[view], "byteOffset");
-    const std::size_t length = jsonSize(views[view], "byteLength");
-    const std::size_t bufferLength =
-        buffer < buffers.size() ? jsonSize(buffers[buffer], "byteLength") : 0;
-    if (offset > bufferLength || length > bufferLength - offset) {
-      invalid(ctx, fmt::format("invalid glTF: bufferView {} of image {} lies outside its buffer",
-                               view, i));
-    }
-  }
-}
 
 // Required extensions we lack fail the load; optional ones are ignored with a warning.
 void checkExtensions(const json& document, LoadContext& ctx) {
@@ -104,7 +74,8 @@ void checkExtensions(const json& document, LoadContext& ctx) {
 // costs in memory, here and again inside tinygltf.
 constexpr JsonShapeLimits kGltfJsonLimits{64, 4'000'000};
 
-void precheckJson(std::string_view text, LoadContext& ctx) {
+// `glbBinBytes`: for a GLB, the size of its BIN chunk (0: none).
+void precheckJson(std::string_view text, std::optional<std::size_t> glbBinBytes, LoadContext& ctx) {
   if (const auto excess = findJsonShapeExcess(text, kGltfJsonLimits)) {
     tooLarge(ctx, "the glTF JSON " + excess->describe(kGltfJsonLimits));
   }
@@ -117,10 +88,11 @@ void precheckJson(std::string_view text, LoadContext& ctx) {
   checkSchema(document, ctx.displayName);
   const std::string version = document["asset"]["version"].get<std::string>();
   if (version.rfind("2.", 0) != 0) {
-    invalid(ctx, fmt::format("glTF version {} is not supported (2.x only)", version));
+    invalid(ctx,
+            fmt::format("/asset/version: glTF version {} is not supported (2.x only)", version));
   }
+  checkDocument(document, {ctx.displayName, glbBinBytes});
   checkExtensions(document, ctx);
-  checkImageBufferViews(document, ctx);
 }
 
 [[noreturn]] void throwParseFailure(const LoadContext& ctx, const std::string& tinygltfError) {
@@ -143,10 +115,21 @@ void addParserWarnings(LoadContext& ctx, const std::string& text) {
 
 tinygltf::Model parseModel(const std::vector<std::uint8_t>& bytes, LoadContext& ctx) {
   const bool binary = hasGlbMagic(bytes);
+  std::vector<std::uint8_t> cleanGlb;
+  const std::vector<std::uint8_t>* input = &bytes;
   if (binary) {
-    precheckJson(readGlbContainer(bytes, ctx).json, ctx);
+    const GlbChunks chunks = readGlbContainer(bytes, ctx);
+    precheckJson(chunks.json, chunks.binBytes, ctx);
+    if (!chunks.unknownChunkTypes.empty()) {
+      for (std::uint32_t type : chunks.unknownChunkTypes) {
+        ctx.warnOnce(fmt::format("GLB chunk of unknown type 0x{:08x} ignored", type));
+      }
+      cleanGlb = withoutUnknownChunks(bytes, chunks);
+      input = &cleanGlb;
+    }
   } else {
-    precheckJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), ctx);
+    precheckJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                 std::nullopt, ctx);
   }
   tinygltf::TinyGLTF parser;
   parser.SetFsCallbacks(sandboxedFileCallbacks(ctx));
@@ -154,11 +137,11 @@ tinygltf::Model parseModel(const std::vector<std::uint8_t>& bytes, LoadContext& 
   tinygltf::Model model;
   std::string error;
   std::string warning;
-  const auto size = static_cast<unsigned int>(bytes.size());
+  const auto size = static_cast<unsigned int>(input->size());
   const bool parsed =
-      binary ? parser.LoadBinaryFromMemory(&model, &error, &warning, bytes.data(), size, "")
+      binary ? parser.LoadBinaryFromMemory(&model, &error, &warning, input->data(), size, "")
              : parser.LoadASCIIFromString(&model, &error, &warning,
-                                          reinterpret_cast<const char*>(bytes.data()), size, "");
+                                          reinterpret_cast<const char*>(input->data()), size, "");
   if (ctx.fatal) throw *ctx.fatal;
   if (!parsed) throwParseFailure(ctx, error);
   addParserWarnings(ctx, warning);

@@ -107,7 +107,7 @@ Image8 decodeTexture(LoadContext& ctx, const std::uint8_t* bytes, std::size_t si
 }  // namespace
 
 std::string imageLabel(const tinygltf::Image& image, int index) {
-  std::string text = label("image", index, image.name);
+  std::string text = label("images", index, image.name);
   if (!image.uri.empty()) text += fmt::format(" '{}'", image.uri);
   return text;
 }

@@ -50,7 +50,8 @@ struct LoadContext {
 // Throws lgh::Error(TooLarge, message), naming the asset.
 [[noreturn]] void tooLarge(const LoadContext& ctx, const std::string& message);
 
-// "mesh 3 ('Teapot')", or "mesh 3" when unnamed: how messages name glTF objects.
-std::string label(const char* kind, int index, const std::string& name);
+// "/meshes/3 ('Teapot')", or "/meshes/3" when unnamed: how messages name glTF objects, by the
+// JSON pointer of the object (`array` is the document's array: "meshes", "nodes", ...).
+std::string label(const char* array, int index, const std::string& name);
 
 }  // namespace lgh::gltf
