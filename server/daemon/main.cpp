@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <string_view>
 #include <thread>
 
@@ -14,7 +15,9 @@
 
 #include "config.hpp"
 #include "daemon_context.hpp"
+#include "lgh/scene_worker.hpp"
 #include "logging.hpp"
+#include "metrics_listener.hpp"
 #include "server.hpp"
 #include "shutdown.hpp"
 #include "version.hpp"
@@ -75,6 +78,18 @@ int serve(const DaemonConfig& config) {
   }
   std::cout << "listening on " << config.host << ":" << port << std::endl;
   logging::event(spdlog::level::info, "listening", startupFields(config, port));
+  std::optional<MetricsListener> metricsListener;
+  if (config.metricsPort >= 0) {
+    metricsListener.emplace(context);
+    const int metricsPort = metricsListener->start(config.host, config.metricsPort);
+    if (metricsPort < 0) {
+      logging::event(spdlog::level::critical, "bind_failed",
+                     {{"host", config.host}, {"port", config.metricsPort}, {"for", "metrics"}});
+      return 1;
+    }
+    std::cout << "metrics on " << config.host << ":" << metricsPort << std::endl;
+    logging::event(spdlog::level::info, "metrics_listening", {{"port", metricsPort}});
+  }
 
   std::atomic<bool> listenReturned = false;
   ShutdownSupervisor supervisor;
@@ -102,6 +117,10 @@ int serve(const DaemonConfig& config) {
 int main(int argc, char** argv) {
   if (argc == 2 && std::string_view(argv[1]) == lghd::kProbeVulkanFlag) {
     return lghd::printVulkanProbe();
+  }
+  if (argc >= 2 && argc <= 3 && std::string_view(argv[1]) == lghd::kSceneWorkerFlag) {
+    lghd::logging::setUp("warn", "json");
+    return lgh::runSceneParserWorker(lgh::kSceneWorkerFd, argc == 3 ? argv[2] : "");
   }
   lghd::ParsedConfig parsed = lghd::parseConfig(argc, argv);
   if (!parsed.config) return parsed.exitCode;

@@ -10,6 +10,7 @@
 #include "scene/asset_path.hpp"
 #include "scene/demo_scene.hpp"
 #include "scene/gltf/gltf_loader.hpp"
+#include "scene/worker/scene_worker.hpp"
 
 namespace lgh {
 namespace {
@@ -26,10 +27,15 @@ std::uint64_t fnv1a(const std::vector<std::uint8_t>& bytes) {
 }  // namespace
 
 SceneCache::SceneCache(const RendererOptions& options) : options_(options) {
+  if (!options_.sceneWorker.executable.empty()) {
+    worker_ = std::make_unique<worker::SceneWorker>(options_.sceneWorker);
+  }
   GLfloat anisotropy = 1.0F;
   glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &anisotropy);
   maxAnisotropy_ = anisotropy;
 }
+
+SceneCache::~SceneCache() = default;
 
 std::string SceneCache::keyFor(const SceneSource& source) const {
   switch (source.kind) {
@@ -59,23 +65,14 @@ std::string SceneCache::keyFor(const SceneSource& source) const {
   return {};
 }
 
-Scene SceneCache::load(const SceneSource& source) const {
+Scene SceneCache::load(const SceneSource& source) {
+  if (source.kind == SceneSource::Kind::Demo) return makeDemoScene();
   SceneLoadLimits limits;
   limits.maxTriangles = options_.maxTriangles;
   limits.maxTextureSize = options_.maxTextureSize;
   limits.maxTextureBytes = options_.maxTextureBytes;
-  switch (source.kind) {
-    case SceneSource::Kind::Demo:
-      return makeDemoScene();
-    case SceneSource::Kind::InlineGlb:
-      return loadGlbBytes(source.glbBytes,
-                          source.displayName.empty() ? "inline.glb" : source.displayName, limits);
-    case SceneSource::Kind::UploadedGltf:
-      return loadGltfFromMemory(source.gltfFileName, source.uploadedFiles, limits);
-    case SceneSource::Kind::AssetPath:
-      return loadGltfFile(options_.assetRoot, source.assetPath, limits);
-  }
-  return makeDemoScene();
+  if (worker_) return worker_->load({source, options_.assetRoot, limits});
+  return loadSceneSource(source, options_.assetRoot, limits);
 }
 
 SceneCache::Lookup SceneCache::get(const SceneSource& source) {

@@ -17,6 +17,10 @@
 
 namespace lgh {
 
+namespace worker {
+class SceneWorker;
+}
+
 // The acceleration structures of a cached scene, built by the first shadowed frame that draws it
 // and kept while the tracer that built them lives (`epoch`: ShadowDevice::epoch()).
 struct TraceSceneSlot {
@@ -39,6 +43,9 @@ struct CachedScene {
 class SceneCache {
  public:
   explicit SceneCache(const RendererOptions& options);
+  ~SceneCache();
+  SceneCache(const SceneCache&) = delete;
+  SceneCache& operator=(const SceneCache&) = delete;
 
   struct Lookup {
     std::shared_ptr<CachedScene> entry;
@@ -54,10 +61,12 @@ class SceneCache {
   std::string keyFor(const SceneSource& source) const;
 
  private:
-  Scene load(const SceneSource& source) const;
+  // In the scene parser worker when the options name one (untrusted bytes never parsed here).
+  Scene load(const SceneSource& source);
   void evictOverBudget();
 
   RendererOptions options_;
+  std::unique_ptr<worker::SceneWorker> worker_;
   float maxAnisotropy_ = 1.0F;
   struct Slot {
     std::string key;

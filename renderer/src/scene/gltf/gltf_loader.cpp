@@ -240,4 +240,20 @@ Scene loadGltfFromMemory(const std::string& gltfName,
   });
 }
 
+Scene loadSceneSource(const SceneSource& source, const std::filesystem::path& assetRoot,
+                      const SceneLoadLimits& limits) {
+  switch (source.kind) {
+    case SceneSource::Kind::InlineGlb:
+      return loadGlbBytes(source.glbBytes,
+                          source.displayName.empty() ? "inline.glb" : source.displayName, limits);
+    case SceneSource::Kind::UploadedGltf:
+      return loadGltfFromMemory(source.gltfFileName, source.uploadedFiles, limits);
+    case SceneSource::Kind::AssetPath:
+      return loadGltfFile(assetRoot, source.assetPath, limits);
+    case SceneSource::Kind::Demo:
+      break;
+  }
+  throw Error(ErrorCode::Internal, "the demo scene is built, not loaded");
+}
+
 }  // namespace lgh

@@ -64,4 +64,9 @@ Scene loadGltfFromMemory(const std::string& gltfName,
                          const std::map<std::string, std::vector<std::uint8_t>>& files,
                          const SceneLoadLimits& limits = {});
 
+// The scene of a request's SceneSource: a file under assetRoot, an inline or uploaded .glb, or an
+// uploaded .gltf with its side files. Not for the demo scene (lgh::Error(Internal)).
+Scene loadSceneSource(const SceneSource& source, const std::filesystem::path& assetRoot,
+                      const SceneLoadLimits& limits);
+
 }  // namespace lgh
