@@ -45,5 +45,11 @@ inline std::string countLabel(int count) {
 Command addConstructCommand(CLI::App& app, const cli::ContextFlags& context);
 // `lgh-bench render`: full LGH frames (server/bench/render.cpp).
 Command addRenderCommand(CLI::App& app, const cli::ContextFlags& context);
+// `lgh-bench scene-load`: scene parsing in this process and in the worker process
+// (server/bench/scene_load.cpp).
+Command addSceneLoadCommand(CLI::App& app, const cli::ContextFlags& context);
+
+// argv[1] of lgh-bench started as scene-load's scene parser worker.
+inline constexpr const char* kSceneWorkerFlag = "--scene-parser-worker";
 
 }  // namespace lgh::bench

@@ -102,6 +102,17 @@ class DocumentChecker {
              fmt::format("names {}, which /extensionsUsed does not list", required[i].dump()));
       }
     }
+    // Extensions that change how the data reads cannot be optional.
+    const json& usedList = array("extensionsUsed");
+    for (std::size_t i = 0; i < usedList.size(); ++i) {
+      const bool listedRequired = std::any_of(
+          required.begin(), required.end(), [&](const json& name) { return name == usedList[i]; });
+      if (usedList[i] == "KHR_mesh_quantization" && !listedRequired) {
+        fail(fmt::format("/extensionsUsed/{}", i),
+             "names KHR_mesh_quantization, which cannot be optional: list it in "
+             "/extensionsRequired too");
+      }
+    }
     // Every "extensions" object anywhere but inside extras: its members must be declared.
     struct Frame {
       const json* value;

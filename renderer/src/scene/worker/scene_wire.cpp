@@ -13,16 +13,32 @@ namespace {
 struct SizeSink {
   std::size_t size = 0;
   void put(const void* /*data*/, std::size_t length) { size += length; }
+  void zeros(std::size_t length) { size += length; }
+  std::size_t offset() const { return size; }
 };
 
 struct MemorySink {
+  std::uint8_t* start;
   std::uint8_t* next;
   void put(const void* data, std::size_t length) {
     if (length == 0) return;
     std::memcpy(next, data, length);
     next += length;
   }
+  void zeros(std::size_t length) {
+    std::memset(next, 0, length);
+    next += length;
+  }
+  std::size_t offset() const { return static_cast<std::size_t>(next - start); }
 };
+
+// Arrays start at this alignment from the start of the message (which is page-aligned in the
+// shared memory it travels in), so that the reader can copy them as arrays of their type.
+constexpr std::size_t kArrayAlignment = 16;
+
+std::size_t paddingAt(std::size_t offset) {
+  return (kArrayAlignment - offset % kArrayAlignment) % kArrayAlignment;
+}
 
 template <typename Sink>
 class Writer {
@@ -41,8 +57,9 @@ class Writer {
   }
   template <typename T>
   void pods(const std::vector<T>& values) {
-    static_assert(std::is_trivially_copyable_v<T>);
+    static_assert(std::is_trivially_copyable_v<T> && alignof(T) <= kArrayAlignment);
     size(values.size());
+    sink_.zeros(paddingAt(sink_.offset()));
     sink_.put(values.data(), values.size() * sizeof(T));
   }
 
@@ -57,7 +74,7 @@ Encoded encoded(Encode encode) {
   Writer<SizeSink> counting(counter);
   encode(counting);
   return {counter.size, [encode](std::uint8_t* destination) {
-            MemorySink sink{destination};
+            MemorySink sink{destination, destination};
             Writer<MemorySink> writer(sink);
             encode(writer);
           }};
@@ -92,12 +109,18 @@ class Reader {
     const auto* start = reinterpret_cast<const char*>(take(length));
     return {start, length};
   }
+  // One copy, no zero-filling first: the array is aligned for T (Writer::pods) and T is
+  // trivially copyable, so its bytes are copied as Ts.
   template <typename T>
   std::vector<T> pods() {
-    const std::size_t length = count(sizeof(T));
-    std::vector<T> values(length);
-    if (length > 0) std::memcpy(values.data(), take(length * sizeof(T)), length * sizeof(T));
-    return values;
+    static_assert(std::is_trivially_copyable_v<T> && alignof(T) <= kArrayAlignment);
+    const std::size_t length = size();
+    take(paddingAt(position_));
+    if (length > (bytes_.size() - position_) / std::max<std::size_t>(sizeof(T), 1)) {
+      broken("a count past the end");
+    }
+    const auto* first = reinterpret_cast<const T*>(take(length * sizeof(T)));
+    return std::vector<T>(first, first + length);
   }
   void finish() const {
     if (position_ != bytes_.size()) broken("bytes after the end");

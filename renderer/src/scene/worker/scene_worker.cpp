@@ -73,7 +73,9 @@ bool sendMessage(int socket, const Encoded& message) {
   const UniqueFd memory(::memfd_create("lgh-scene-message", MFD_CLOEXEC | MFD_ALLOW_SEALING));
   const std::size_t size = std::max<std::size_t>(message.size, 1);
   if (memory.get() < 0 || ::ftruncate(memory.get(), static_cast<off_t>(size)) != 0) return false;
-  void* mapped = ::mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_SHARED, memory.get(), 0);
+  // MAP_POPULATE: the pages in one go, rather than one fault each while writing.
+  void* mapped =
+      ::mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_POPULATE, memory.get(), 0);
   if (mapped == MAP_FAILED) return false;
   message.write(static_cast<std::uint8_t*>(mapped));
   ::munmap(mapped, size);
@@ -113,7 +115,8 @@ class Message {
     return {static_cast<const std::uint8_t*>(data_), size_};
   }
   void map(int fd, std::size_t size) {
-    data_ = ::mmap(nullptr, std::max<std::size_t>(size, 1), PROT_READ, MAP_SHARED, fd, 0);
+    data_ = ::mmap(nullptr, std::max<std::size_t>(size, 1), PROT_READ, MAP_SHARED | MAP_POPULATE,
+                   fd, 0);
     if (data_ == MAP_FAILED) data_ = nullptr;
     size_ = data_ != nullptr ? size : 0;
   }
