@@ -21,7 +21,7 @@ constexpr std::size_t kMarkerBytes = 100;
 }  // namespace
 
 std::string cappedJsonArray(const std::vector<std::string>& items, std::size_t maxBytes) {
-  const std::string whole = compact(items);
+  std::string whole = compact(items);
   if (whole.size() <= maxBytes) return whole;
   nlohmann::json kept = nlohmann::json::array();
   std::size_t used = 2;  // []
@@ -38,7 +38,7 @@ std::string cappedJsonArray(const std::vector<std::string>& items, std::size_t m
 
 std::string cappedJsonObject(const std::map<std::string, std::string>& entries,
                              std::size_t maxBytes) {
-  const std::string whole = compact(entries);
+  std::string whole = compact(entries);
   if (whole.size() <= maxBytes) return whole;
   nlohmann::json kept = nlohmann::json::object();
   std::size_t used = 2;  // {}

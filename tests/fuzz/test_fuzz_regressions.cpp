@@ -48,7 +48,7 @@ struct SeedDir {
 
 const fs::path& seedDir() {
   static const SeedDir dir{[] {
-    const fs::path made =
+    fs::path made =
         fs::temp_directory_path() / ("lgh-fuzz-seeds-" + std::to_string(::getpid()));
     fs::remove_all(made);
     const std::string command =

@@ -125,8 +125,9 @@ class DocumentChecker {
       if (frame.value->is_array()) {
         for (std::size_t i = 0; i < frame.value->size(); ++i) {
           const json& item = (*frame.value)[i];
-          if (item.is_structured())
+          if (item.is_structured()) {
             stack.push_back({&item, fmt::format("{}/{}", frame.pointer, i)});
+          }
         }
         continue;
       }

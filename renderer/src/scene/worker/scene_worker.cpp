@@ -250,6 +250,7 @@ void SceneWorker::start() {
   std::vector<std::string> argv = {options_.executable.string()};
   argv.insert(argv.end(), options_.arguments.begin(), options_.arguments.end());
   std::vector<char*> pointers;
+  pointers.reserve(argv.size() + 1);
   for (std::string& argument : argv) pointers.push_back(argument.data());
   pointers.push_back(nullptr);
   pid_t pid = -1;
