@@ -9,7 +9,7 @@
 layout(binding = 0) uniform sampler2D uDirect;
 layout(binding = 1) uniform sampler2D uIndirect;
 layout(binding = 2) uniform sampler2D uCoverage;  // G-buffer position: w = 1 where drawn
-layout(binding = LGH_SLOT_COMPOSITE_RATIO) uniform sampler2D uShadowRatio;
+layout(binding = LGH_UNIT_COMPOSITE_RATIO) uniform sampler2D uShadowRatio;
 
 uniform bool uHasIndirect;
 uniform bool uHasShadowRatio;

@@ -8,9 +8,9 @@
 #define LGH_READ_VISIBILITY
 #include "include/gbuffer.glsl"
 #include "include/lights.glsl"
-#include "include/shadow_rays.glsl"
+#include "include/ray_batch.glsl"
 
-layout(std430, binding = LGH_SLOT_LIGHTS) readonly buffer Lights { Light lights[]; };
+layout(std430, binding = LGH_BIND_LIGHTS) readonly buffer Lights { Light lights[]; };
 
 uniform int uLightCount;
 uniform vec3 uCameraPosition;
@@ -28,7 +28,7 @@ void main() {
   }
   vec3 toViewer = normalize(uCameraPosition - s.position);
   vec3 radiance = texelFetch(gEmissive, pixel, 0).rgb;
-  radiance += uAmbient * s.baseColor * s.occlusion;
+  radiance += uAmbient * ambientResponse(s);
   uint pixelIndex = uint(pixel.y) * uint(uFrameWidth) + uint(pixel.x);
   for (int i = 0; i < uLightCount; ++i) {
     vec3 toLight;

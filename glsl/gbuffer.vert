@@ -1,6 +1,7 @@
 #version 450 core
 // G-buffer pass, vertex stage. Inputs: mesh vertices (see renderer/src/scene/gpu_scene.cpp for
-// the attribute locations), the instance's world matrix and the camera's view-projection.
+// the attribute locations), the instance's world matrix and the camera's view-projection. Lines
+// and points go on to gbuffer_lines.geom / gbuffer_points.geom, which widen them on screen.
 
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
@@ -20,6 +21,7 @@ out VertexData {
   vec2 uv0;
   vec2 uv1;
   vec4 color;
+  vec2 sprite;  // position inside a point's square, [-1, 1]^2; 0 for triangles and lines
 } vout;
 
 void main() {
@@ -30,5 +32,6 @@ void main() {
   vout.uv0 = inUv0;
   vout.uv1 = inUv1;
   vout.color = inColor;
+  vout.sprite = vec2(0.0);
   gl_Position = uViewProjection * world;
 }

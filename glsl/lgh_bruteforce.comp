@@ -2,24 +2,35 @@
 // Brute-force reference of the many-light lighting: every input point light evaluated at every
 // pixel with the shading code of the hierarchy's paths (include/lgh_shading.glsl: same BRDF,
 // falloff and singularity clamp), unshadowed. The error metrics of the hierarchy (relative RMSE,
-// PSNR) are measured against this image. Per-light shadows come with the Vulkan sidecar.
-// Lights stream through shared memory in batches of 64.
-// Inputs: G-buffer (units 0..4), point lights, level table (for h_1 of the clamp).
+// PSNR) are measured against this image. Lights stream through shared memory in batches of 64.
+// With LGH_SHADOWED, the shadowed reference: the lights come in chunks of uChunkCount from
+// uChunkFirst on, each with a shadow ray per pixel traced by the Vulkan side (visibility bit r:
+// light uChunkFirst + r), and every chunk adds onto the image (the first one writes it).
+// Inputs: G-buffer (units 0..4), point lights, level table (for h_1 of the clamp), visibility.
 // Output: rgba32f radiance, alpha = coverage.
 
 #include "include/gbuffer.glsl"
 #include "include/lgh_shading.glsl"
+#ifdef LGH_SHADOWED
+#define LGH_READ_VISIBILITY
+#include "include/ray_batch.glsl"
+uniform uint uChunkFirst;
+#endif
 
 #define GROUP 64
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(std430, binding = LGH_BINDING_POINT_LIGHTS) readonly buffer LghPointLights {
+layout(std430, binding = LGH_BIND_POINT_LIGHTS) readonly buffer LghPointLights {
   PointLight pointLights[];
 };
+#ifdef LGH_SHADOWED
+layout(rgba32f, binding = LGH_IMAGE_OUTPUT) uniform image2D uOutput;
+#else
 layout(rgba32f, binding = LGH_IMAGE_OUTPUT) uniform writeonly image2D uOutput;
+#endif
 
-uniform uint uLightCount;
+uniform uint uLightCount;  // shadowed: the chunk's lights
 
 shared PointLight s_lights[GROUP];
 
@@ -31,17 +42,30 @@ void main() {
   vec3 toViewer = valid ? normalize(uCameraPosition - s.position) : vec3(0.0, 0.0, 1.0);
   float minDistance2 = lghFrame().minDistance2;
   vec3 radiance = vec3(0.0);
+#ifdef LGH_SHADOWED
+  uint first = uChunkFirst;
+  uint pixelIndex = lghPixelIndex(pixel);
+#else
+  uint first = 0u;
+#endif
   for (uint batch = 0u; batch < uLightCount; batch += GROUP) {
-    if (batch + tid < uLightCount) s_lights[tid] = pointLights[batch + tid];
+    if (batch + tid < uLightCount) s_lights[tid] = pointLights[first + batch + tid];
     barrier();
     uint count = min(uint(GROUP), uLightCount - batch);
     if (valid) {
       for (uint i = 0u; i < count; ++i) {
+#ifdef LGH_SHADOWED
+        if (!rayVisible(pixelIndex, int(batch + i))) continue;
+#endif
         vec3 offset = s_lights[i].positionPad.xyz - s.position;
         radiance += lghPointRadiance(s, toViewer, offset, s_lights[i].intensityPad.rgb, minDistance2);
       }
     }
     barrier();
   }
-  if (lghInFrame(pixel)) imageStore(uOutput, pixel, vec4(radiance, valid ? 1.0 : 0.0));
+  if (!lghInFrame(pixel)) return;
+#ifdef LGH_SHADOWED
+  if (first > 0u) radiance += imageLoad(uOutput, pixel).rgb;
+#endif
+  imageStore(uOutput, pixel, vec4(radiance, valid ? 1.0 : 0.0));
 }

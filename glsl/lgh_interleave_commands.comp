@@ -8,7 +8,7 @@
 
 layout(local_size_x = 16) in;
 
-layout(std430, binding = 4) writeonly buffer LghTileDraws { uvec4 draws[]; };
+layout(std430, binding = LGH_BIND_TILE_DRAWS) writeonly buffer LghTileDraws { uvec4 draws[]; };
 
 uniform uint uVertexCount;
 

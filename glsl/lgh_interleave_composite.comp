@@ -16,7 +16,7 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(binding = 5) uniform sampler2D uAtlas;
+layout(binding = LGH_UNIT_PASS_INPUT) uniform sampler2D uAtlas;
 layout(rgba16f, binding = LGH_IMAGE_OUTPUT) uniform writeonly image2D uOutput;
 
 uniform float uPixelFootprint;  // world size of one pixel at unit distance from the camera

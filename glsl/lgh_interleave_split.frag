@@ -4,18 +4,19 @@
 // drawn into one tile covers 1/n^2 of the pixels it would cover in the full frame. Drawn as one
 // full-screen pass over the tile atlas; atlas pixels past the frame's edge get no coverage.
 // The albedo target is sRGB like the G-buffer's (GL_FRAMEBUFFER_SRGB on), so the copy is exact.
-// Inputs: G-buffer (units 0..3), G-buffer depth (unit 5).
-// Outputs: tile position, normal, albedo, material, depth.
+// Inputs: G-buffer (units 0..3, 6), G-buffer depth (unit 5).
+// Outputs: tile position, normal, albedo, material, layers, depth.
 
 #include "include/gbuffer.glsl"
 #include "include/lgh_shading.glsl"
 
-layout(binding = 5) uniform sampler2D uDepth;
+layout(binding = LGH_UNIT_PASS_INPUT) uniform sampler2D uDepth;
 
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
 layout(location = 2) out vec4 outAlbedo;
 layout(location = 3) out vec4 outMaterial;
+layout(location = 4) out uvec4 outLayers;
 
 void main() {
   int tile;
@@ -25,6 +26,7 @@ void main() {
     outNormal = vec4(0.0);
     outAlbedo = vec4(0.0);
     outMaterial = vec4(0.0);
+    outLayers = uvec4(0u);
     gl_FragDepth = 1.0;
     return;
   }
@@ -32,5 +34,6 @@ void main() {
   outNormal = texelFetch(gNormal, pixel, 0);
   outAlbedo = texelFetch(gAlbedo, pixel, 0);
   outMaterial = texelFetch(gMaterial, pixel, 0);
+  outLayers = texelFetch(gLayers, pixel, 0);
   gl_FragDepth = texelFetch(uDepth, pixel, 0).r;
 }

@@ -288,7 +288,7 @@ void writeOutputs(Pixel px, ivec2 pixel, ivec2 atlasPixel) {
 
 Pixel loadPixel(ivec2 pixel) {
   Pixel px;
-  px.surface = SurfacePoint(vec3(0.0), vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0, 1.0, 1.0);
+  px.surface = defaultSurface(vec3(0.0), vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0, 1.0, 1.0);
   px.valid = lghInFrame(pixel) && readSurface(pixel, px.surface);
   px.toViewer = px.valid ? normalize(uCameraPosition - px.surface.position) : vec3(0.0, 0.0, 1.0);
   px.radiance = vec3(0.0);

@@ -13,15 +13,14 @@
 // Candidates of <= LGH_TAIL_VERTICES vertices are built by the last work group of the last needed
 // dispatch (the "tail"), which then chooses L and writes the level table and the dispatch
 // arguments of the rest of the build (lghConfigure). Marking every candidate directly instead
-// cost 0.9 ms at 1M lights on an H100: all threads in flight race for the coarse candidates' few
-// words. Counts go to lgh.candidateS1[L - 1] (kept for reports and tests). The S1 step clears the
+// was slow at 1M lights: all threads in flight race for the coarse candidates' few words. Counts go to lgh.candidateS1[L - 1] (kept for reports and tests). The S1 step clears the
 // bitmaps afterwards (lgh_scatter.comp, or lgh_bin_count.comp for the binned S1).
 #define LGH_BUILD_INTERNALS
 #include "include/lgh_types.glsl"
 
 // The tail reads bits that other groups of its dispatch and its own threads wrote: it goes through
 // this coherent alias; the marking and the steps keep the cached loads.
-layout(std430, binding = 8) coherent buffer LghBitmapsCoherent { uint bitmapCoherent[]; };
+layout(std430, binding = LGH_BIND_BUILD_BITMAPS) coherent buffer LghBitmapsCoherent { uint bitmapCoherent[]; };
 
 layout(local_size_x = LGH_GROUP) in;
 

@@ -13,7 +13,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #ifdef LGH_RESOLVE_COPY
-layout(binding = 5) uniform sampler2D uAccumulation;
+layout(binding = LGH_UNIT_PASS_INPUT) uniform sampler2D uAccumulation;
 layout(rgba16f, binding = LGH_IMAGE_OUTPUT) uniform writeonly image2D uOutput;
 #endif
 

@@ -11,8 +11,8 @@
 
 layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
 
-layout(binding = LGH_SLOT_SHADOW_RATIO_IN) uniform sampler2D uRatioIn;
-layout(r16f, binding = LGH_SLOT_SHADOW_RATIO_OUT) uniform writeonly image2D uRatioOut;
+layout(binding = LGH_UNIT_PASS_INPUT) uniform sampler2D uRatioIn;
+layout(r16f, binding = LGH_IMAGE_SHADOW_RATIO) uniform writeonly image2D uRatioOut;
 
 uniform ivec2 uFrameSize;
 uniform int uStep;

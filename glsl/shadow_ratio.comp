@@ -6,12 +6,12 @@
 // Inputs: visibility bits, the LGH samples. Output: r16f ratio image.
 
 #define LGH_READ_VISIBILITY
-#include "include/shadow_rays.glsl"
+#include "include/ray_batch.glsl"
 
 layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
 
-layout(std430, binding = LGH_SLOT_SHADOW_SAMPLES) readonly buffer LghSamples { vec4 lghSamples[]; };
-layout(r16f, binding = LGH_SLOT_SHADOW_RATIO_OUT) uniform writeonly image2D uRatio;
+layout(std430, binding = LGH_BIND_SAMPLES) readonly buffer LghSamples { vec4 lghSamples[]; };
+layout(r16f, binding = LGH_IMAGE_SHADOW_RATIO) uniform writeonly image2D uRatio;
 
 uniform ivec2 uFrameSize;
 uniform int uLghSampleCount;

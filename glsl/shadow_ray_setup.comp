@@ -3,21 +3,30 @@
 // moved off the surface along the normal) and its targets: uLightSamples points (or directions)
 // on each shadowed direct light, jittered over the light's radius for soft shadows, then the
 // LGH's k shadow samples (already jittered by the grid light's variance, Sec. 3.3).
+// With LGH_POINT_LIGHT_RAYS (the shadowed brute-force reference): one ray to each of
+// uRaysPerPixel point lights of the PointLight SSBO from uFirstLight on, at their exact positions.
 // Inputs: G-buffer position and normal, lights SSBO, LGH samples. Outputs: origins, targets.
 
 #include "include/gbuffer.glsl"
 #include "include/lights.glsl"
 #include "include/reservoir.glsl"
-#include "include/shadow_rays.glsl"
+#include "include/ray_batch.glsl"
+#ifdef LGH_POINT_LIGHT_RAYS
+#include "include/lgh_types.glsl"
+layout(std430, binding = LGH_BIND_POINT_LIGHTS) readonly buffer PointLights {
+  PointLight pointLights[];
+};
+uniform int uFirstLight;
+#endif
 
 layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
 
-layout(std430, binding = LGH_SLOT_LIGHTS) readonly buffer Lights { Light lights[]; };
-layout(std430, binding = LGH_SLOT_SHADOW_SAMPLES) readonly buffer LghSamples {
+layout(std430, binding = LGH_BIND_LIGHTS) readonly buffer Lights { Light lights[]; };
+layout(std430, binding = LGH_BIND_SAMPLES) readonly buffer LghSamples {
   vec4 lghSamples[];  // vec4(position, weight); weight 0: no light
 };
-layout(std430, binding = LGH_SLOT_RAY_ORIGINS) writeonly buffer RayOrigins { vec4 origins[]; };
-layout(std430, binding = LGH_SLOT_RAY_TARGETS) writeonly buffer RayTargets { vec4 targets[]; };
+layout(std430, binding = LGH_BIND_RAY_ORIGINS) writeonly buffer RayOrigins { vec4 origins[]; };
+layout(std430, binding = LGH_BIND_RAY_TARGETS) writeonly buffer RayTargets { vec4 targets[]; };
 
 uniform ivec2 uFrameSize;
 uniform int uLghSampleCount;  // k; 0 when the frame has no LGH samples
@@ -85,6 +94,12 @@ void main() {
   }
   vec3 origin = s.position + s.normal * uSurfaceOffset;
   origins[pixelIndex] = vec4(origin, 1.0);
+#ifdef LGH_POINT_LIGHT_RAYS
+  for (int ray = 0; ray < uRaysPerPixel; ++ray) {
+    targets[firstTarget + uint(ray)] = vec4(pointLights[uFirstLight + ray].positionPad.xyz, 1.0);
+  }
+  return;
+#endif
   uint pixelSeed = reservoirPixelSeed(uSeed, pixelIndex);
   int ray = 0;
   for (int light = 0; light < uShadowedLights; ++light) {

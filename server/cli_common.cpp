@@ -9,7 +9,7 @@ void addContextFlags(CLI::App& app, ContextFlags& flags) {
   app.add_option("--backend", flags.backend,
                  "GL context path: auto (egl-device, then surfaceless, then osmesa), egl-device, "
                  "surfaceless, osmesa")
-      ->check(CLI::IsMember({"auto", "egl-device", "surfaceless", "osmesa"}))
+      ->check(CLI::IsMember(enumChoices<ContextBackend>()))
       ->envname("LGH_BACKEND")
       ->capture_default_str();
   app.add_option("--gpu", flags.gpu, "EGL device index (EGL's order, not CUDA's)")

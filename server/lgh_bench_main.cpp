@@ -3,6 +3,8 @@
 //                       [--levels L|auto] [--iterations K] [--warmup W] [--json] [--gpu N]
 //   lgh-bench render ...  (see server/bench/render.cpp)
 //   lgh-bench scene-load FILE... [--repeat N]  (see server/bench/scene_load.cpp)
+//   lgh-bench shadows ... (see server/bench/shadows.cpp)
+//   lgh-bench handoff ... (see server/bench/handoff.cpp)
 // Subcommands register themselves from server/bench/<name>.cpp (see bench/bench_command.hpp).
 #include <iostream>
 #include <string_view>
@@ -22,9 +24,10 @@ int main(int argc, char** argv) try {
   lgh::cli::ContextFlags context;
   lgh::cli::addContextFlags(app, context);
   app.require_subcommand(1);
-  std::vector<lgh::bench::Command> commands{lgh::bench::addConstructCommand(app, context),
-                                            lgh::bench::addRenderCommand(app, context),
-                                            lgh::bench::addSceneLoadCommand(app, context)};
+  std::vector<lgh::bench::Command> commands{
+      lgh::bench::addConstructCommand(app, context), lgh::bench::addRenderCommand(app, context),
+      lgh::bench::addSceneLoadCommand(app, context), lgh::bench::addShadowsCommand(app, context),
+      lgh::bench::addHandoffCommand(app, context)};
   CLI11_PARSE(app, argc, argv);
   lgh::cli::setUpLogging(context.logLevel);
   for (const auto& command : commands) {

@@ -2,8 +2,11 @@
 //   lgh-render REQUEST.json -o OUT.png|OUT.exr [--timings OUT.json] [--gpu N]
 //              [--width W --height H]
 //   lgh-render --demo -o demo.png
+//   lgh-render MODEL.glb|MODEL.gltf -o OUT.png [--size 256|WxH] [--view iso|front|side|top|X,Y,Z]
+//              [--transparent]          (a thumbnail: no request JSON; see thumbnail_cli.hpp)
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -15,12 +18,16 @@
 #include "cli_common.hpp"
 #include "lgh/error.hpp"
 #include "lgh/renderer.hpp"
+#include "thumbnail_cli.hpp"
 
 namespace {
 
 struct Flags {
-  std::string requestPath;
+  std::string requestPath;  // a request JSON, '-' (stdin), or a .glb/.gltf model
   bool demo = false;
+  std::string size;  // --size: "" (the request's own; 256 for a model), "N" or "WxH"
+  std::string view;  // --view: "" (iso for a model)
+  bool transparent = false;
   std::string output;
   std::string timingsPath;
   int width = 0;
@@ -49,11 +56,17 @@ bool endsWith(const std::string& text, const std::string& suffix) {
          text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+constexpr lgh::cli::ImageSize kThumbnailSize{256, 256};
+
 // The request JSON with the command line's overrides applied before validation, so the same
-// limits and checks hold for both.
+// limits and checks hold for both. A model becomes the request of its thumbnail.
 nlohmann::json requestJson(const Flags& flags) {
   nlohmann::json json = nlohmann::json::object();
-  if (!flags.demo) {
+  if (!flags.demo && lgh::cli::isModelFile(flags.requestPath)) {
+    json = lgh::cli::modelRequest(
+        flags.requestPath, lgh::cli::parseImageSize(flags.size).value_or(kThumbnailSize),
+        *lgh::cli::parseViewDirection(flags.view.empty() ? "iso" : flags.view), flags.transparent);
+  } else if (!flags.demo) {
     std::string text = readText(flags.requestPath);
     try {
       json = nlohmann::json::parse(text);
@@ -69,6 +82,11 @@ nlohmann::json requestJson(const Flags& flags) {
   auto& output = json["output"];
   if (output.is_null()) output = nlohmann::json::object();
   if (!output.is_object()) return json;  // let validation name it
+  if (const auto size = lgh::cli::parseImageSize(flags.size)) {
+    output["width"] = size->width;
+    output["height"] = size->height;
+  }
+  if (flags.transparent) output["transparent_background"] = true;
   if (flags.width > 0) output["width"] = flags.width;
   if (flags.height > 0) output["height"] = flags.height;
   if (flags.pngCompression >= 0) output["png_compression"] = flags.pngCompression;
@@ -100,7 +118,14 @@ int run(const Flags& flags) {
                      flags.output);
   }
   lgh::RenderRequest request = lgh::parseRenderRequest(requestJson(flags));
-  lgh::Renderer renderer(lgh::cli::rendererOptions(flags.context));
+  lgh::cli::ContextFlags context = flags.context;
+  if (!flags.demo && lgh::cli::isModelFile(flags.requestPath)) {
+    if (!std::filesystem::is_regular_file(flags.requestPath)) {
+      throw lgh::Error(lgh::ErrorCode::NotFound, "cannot open the model", flags.requestPath);
+    }
+    context.assetRoot = lgh::cli::modelAssetRoot(flags.requestPath);
+  }
+  lgh::Renderer renderer(lgh::cli::rendererOptions(context));
   lgh::RenderResult result = renderer.render(request);
   if (flags.repeat > 1) {
     // Warm frames: the scene is cached and shaders are compiled; report each row's median.
@@ -127,10 +152,14 @@ int run(const Flags& flags) {
 
 // A function-try-block: set-up errors (CLI, logging) end in a message, never in terminate().
 int main(int argc, char** argv) try {
-  CLI::App app{"lgh-render: render one lghd request (JSON) to a PNG or EXR file"};
+  CLI::App app{
+      "lgh-render: render one lghd request (JSON) to a PNG or EXR file, or a thumbnail of a glTF "
+      "model:\n  lgh-render model.glb -o model.png --size 256 --view iso --transparent"};
   Flags flags;
-  auto* requestOption =
-      app.add_option("request", flags.requestPath, "request JSON file ('-' for stdin)");
+  auto* requestOption = app.add_option(
+      "request", flags.requestPath,
+      "request JSON file ('-' for stdin), or a .glb/.gltf model to make a thumbnail of (its "
+      "folder is the asset root)");
   auto* demoFlag = app.add_flag("--demo", flags.demo, "render the built-in demo scene");
   requestOption->excludes(demoFlag);
   app.add_option("-o,--output", flags.output, "output file: .png (8-bit sRGB) or .exr (linear)")
@@ -143,6 +172,23 @@ int main(int argc, char** argv) try {
   app.add_option("--png-compression", flags.pngCompression,
                  "override the request's PNG zlib level: 0 (fastest) .. 9 (smallest)")
       ->check(CLI::Range(0, 9));
+  app.add_option("--size", flags.size,
+                 "image size: N (square) or WxH; a model's thumbnail is 256 by default")
+      ->check([](const std::string& text) {
+        return lgh::cli::parseImageSize(text) ? std::string()
+                                              : std::string("must be N or WxH, each 1..16384");
+      });
+  auto* viewOption =
+      app.add_option("--view", flags.view,
+                     "a model's view: iso (the default), front, side, top, or a direction X,Y,Z "
+                     "from the model towards the camera")
+          ->check([](const std::string& text) {
+            return lgh::cli::parseViewDirection(text)
+                       ? std::string()
+                       : std::string("must be iso, front, side, top or X,Y,Z (not all zero)");
+          });
+  app.add_flag("--transparent", flags.transparent,
+               "leave the background transparent (alpha 0 where nothing was drawn)");
   app.add_flag("-q,--quiet", flags.quiet, "print nothing on success");
   app.add_option("--repeat", flags.repeat,
                  "render N times; timings are the per-pass medians of the warm renders 2..N")
@@ -150,7 +196,16 @@ int main(int argc, char** argv) try {
   lgh::cli::addContextFlags(app, flags.context);
   CLI11_PARSE(app, argc, argv);
   if (flags.requestPath.empty() && !flags.demo) {
-    std::cerr << "lgh-render: give a request file or --demo (see --help)\n";
+    std::cerr << "lgh-render: give a request file, a .glb/.gltf model or --demo (see --help)\n";
+    return 2;
+  }
+  const bool model = !flags.demo && lgh::cli::isModelFile(flags.requestPath);
+  if (viewOption->count() > 0 && !model) {
+    std::cerr << "lgh-render: --view frames a model: give a .glb or .gltf file\n";
+    return 2;
+  }
+  if (model && app.count("--asset-root") > 0) {
+    std::cerr << "lgh-render: a model's folder is its asset root: leave out --asset-root\n";
     return 2;
   }
   lgh::cli::setUpLogging(flags.context.logLevel);

@@ -2,29 +2,40 @@
 //   0 position   RGBA32F  world position xyz, w = 1 where geometry was drawn
 //   1 normal     RGBA16F  world normal xyz (unit, facing the camera), w unused
 //   2 albedo     RGBA8    base colour (linear, stored in an sRGB target), a = occlusion
-//   3 material   RGBA8    metallic, roughness, unused, unused
-//   4 emissive   RGBA16F  emitted radiance rgb
+//   3 material   RGBA8    metallic, roughness, model (MATERIAL_MODEL_*, as byte / 255),
+//                         layers (MATERIAL_LAYER_* bits, as byte / 255)
+//   4 emissive   RGBA16F  emitted radiance rgb (unlit surfaces: their colour), a unused
+//   6 layers     RGBA32UI the layers' parameters, read only where the layer bits are set:
+//                  x  unorm8 x4: clearcoat, clearcoat roughness, sheen roughness, transmission
+//                  y  unorm8 x4: sheen colour rgb, specular weight
+//                  z  unorm8 x4: sqrt(dielectric F0) rgb, volume tint (grey, see MATERIALS.md)
+//                  w  snorm16 x2: clearcoat normal, octahedral
+//                Models added later keep their parameters here too (x..w of their own meaning).
+// Texture unit 5 belongs to the passes (atlas, depth, shadow ratio): the layers sit at unit
+// LGH_UNIT_GBUFFER_LAYERS (6).
 #ifndef LGH_GBUFFER_GLSL
 #define LGH_GBUFFER_GLSL
 
 #include "include/brdf.glsl"
+#include "include/gbuffer_encoding.glsl"
+#include "include/slots.glsl"
 
 layout(binding = 0) uniform sampler2D gPosition;
 layout(binding = 1) uniform sampler2D gNormal;
 layout(binding = 2) uniform sampler2D gAlbedo;
 layout(binding = 3) uniform sampler2D gMaterial;
 layout(binding = 4) uniform sampler2D gEmissive;
+layout(binding = LGH_UNIT_GBUFFER_LAYERS) uniform usampler2D gLayers;
 
 bool readSurface(ivec2 pixel, out SurfacePoint s) {
   vec4 position = texelFetch(gPosition, pixel, 0);
-  s.position = position.xyz;
-  s.normal = normalize(texelFetch(gNormal, pixel, 0).xyz);
   vec4 albedo = texelFetch(gAlbedo, pixel, 0);
-  s.baseColor = albedo.rgb;
-  s.occlusion = albedo.a;
   vec4 material = texelFetch(gMaterial, pixel, 0);
-  s.metallic = material.r;
-  s.roughness = material.g;
+  s = defaultSurface(position.xyz, normalize(texelFetch(gNormal, pixel, 0).xyz), albedo.rgb,
+                     material.r, material.g, albedo.a);
+  s.model = uint(material.b * 255.0 + 0.5);
+  s.layers = uint(material.a * 255.0 + 0.5);
+  if (s.layers != 0u) decodeLayers(texelFetch(gLayers, pixel, 0), s);
   return position.w > 0.5;
 }
 

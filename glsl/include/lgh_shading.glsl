@@ -20,23 +20,15 @@
 #include "include/lgh_blend.glsl"
 #include "include/lgh_types.glsl"
 #include "include/reservoir.glsl"
+#include "include/slots.glsl"
 
 #define LGH_MIN_DISTANCE 1.0
 
-// Buffer and image bindings of the lighting passes (mirrored in renderer/src/passes/lgh_bindings.hpp).
-#define LGH_BINDING_GRID_LIGHTS 0
-#define LGH_BINDING_LEVELS 1
-#define LGH_BINDING_SAMPLES 2
-#define LGH_BINDING_POINT_LIGHTS 3
-#define LGH_IMAGE_RESERVOIR_SUM 0
-#define LGH_IMAGE_LOCK 1
-#define LGH_IMAGE_OVERDRAW 2
-#define LGH_IMAGE_OUTPUT 3
 
-layout(std430, binding = LGH_BINDING_GRID_LIGHTS) readonly buffer LghGridLights {
+layout(std430, binding = LGH_BIND_GRID_LIGHTS) readonly buffer LghGridLights {
   GridLight gridLights[];
 };
-layout(std430, binding = LGH_BINDING_LEVELS) readonly buffer LghLevels { LghLevelTable lgh; };
+layout(std430, binding = LGH_BIND_LEVELS) readonly buffer LghLevels { LghLevelTable lgh; };
 
 uniform float uAlpha;           // r_l = alpha * h_l
 uniform int uStartLevel;        // lowest level lighting uses (the paper: 1)
@@ -140,7 +132,7 @@ vec4 lghFinalSample(uint pixelSeed, vec4 pending, float runningSum, uint sampleI
 // Per pixel: F in an r32f image, the k samples at shadowSamples[pixelIndex * k + s] (pending
 // while lighting runs, final afterwards: vec4(position, weight)).
 layout(r32f, binding = LGH_IMAGE_RESERVOIR_SUM) uniform coherent image2D uReservoirSum;
-layout(std430, binding = LGH_BINDING_SAMPLES) coherent buffer LghShadowSamples {
+layout(std430, binding = LGH_BIND_SAMPLES) coherent buffer LghShadowSamples {
   vec4 shadowSamples[];
 };
 #endif

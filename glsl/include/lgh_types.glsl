@@ -8,9 +8,12 @@
 //   layout(std430, binding = 4) readonly buffer LghLevels { LghLevelTable lgh; };
 //
 // With LGH_BUILD_INTERNALS defined (the lgh_*.comp build kernels only) it also declares the
-// builder's scratch buffers, their fixed bindings and the helpers the kernels share.
+// builder's scratch buffers, their bindings (include/slots.glsl) and the helpers the kernels share.
 #ifndef LGH_TYPES_GLSL
 #define LGH_TYPES_GLSL
+
+// Outside LGH_BUILD_INTERNALS: the shader library includes a file once, wherever it first appears.
+#include "include/slots.glsl"
 
 #define LGH_MAX_LEVELS 16
 
@@ -75,34 +78,12 @@ struct LghLevelTable {
 // ---- builder internals ------------------------------------------------------------------------
 #include "include/common.glsl"
 
-#define LGH_GROUP 256
-#define LGH_BOUNDS_ITEMS 8          // lights per thread in the bounds reduction
-#define LGH_BLOCK 1024              // dense vertices per compaction block (4 per thread)
 #define LGH_ROWS_PER_CHUNK 512      // S1 rows per work group in the cooperative gather
 #define LGH_THREAD_GATHER_MAX 1000  // support volume (S1 vertices) up to which a thread gathers alone
 #define LGH_THREAD_GATHER_MIN_VERTICES 16384u  // ... if the level has this many vertices
 #define LGH_TAIL_VERTICES 4096u  // auto levels: candidates this small are left to one work group
-#define LGH_PYRAMID_STEPS 3u     // at most this many pyramid dispatches (more is left to the tail)
 #define LGH_MAX_COORD 1.0e30        // |position| and intensity limit: sums stay finite in float
-// Binned S1 (lgh_bin_*.comp): tiles of T^3 S1 cells, accumulated in shared memory over their
-// (T+1)^3 vertices by one work group per chunk of LGH_BIN_CHUNK lights. T per atomics mode, so
-// that the tile's accumulators stay under 32 KB (the GL minimum of shared memory): 9 floats x 9^3
-// = 26.2 KB, 9 x 2 words x 7^3 = 24.7 KB.
-#define LGH_BIN_TILE_FLOAT 8u
-#define LGH_BIN_TILE_FIXED 6u
-#define LGH_BIN_CHUNK 1024u
 #define LGH_BIN_SCAN_ITEMS 16u  // tile counts per thread in the one-group scan
-
-// Dispatch-indirect slots (uvec4: xyz = work groups, w = items, read by the kernel).
-#define LGH_SLOT_PYRAMID 0  // + step (0..2)
-#define LGH_SLOT_COMPACT_S1 6
-#define LGH_SLOT_COMPACT_REST 7
-#define LGH_SLOT_COMPACT_ALL 8
-#define LGH_SLOT_GATHER_ALL 9
-#define LGH_SLOT_GATHER 8   // + level (2..16): 10..24
-#define LGH_SLOT_SCATTER 24  // + level (1..16): 25..40
-#define LGH_SLOT_BIN_ACCUM 41  // binned S1: one group per (tile, chunk) work item
-#define LGH_DISPATCH_SLOTS 42
 
 struct LghBoundsPartial {
   vec4 minMaxC;  // xyz: min position, w: max intensity component
@@ -153,36 +134,36 @@ struct LghBinLight {
 #define LGH_SHARED_WRITES
 #endif
 
-layout(std430, binding = 0) readonly buffer LghLights { PointLight lights[]; };
-layout(std430, binding = 1) LGH_SHARED_WRITES buffer LghLevels { LghLevelTable lgh; };
-layout(std430, binding = 2) LGH_SHARED_WRITES buffer LghStateBuffer { LghState st; };
-layout(std430, binding = 3) LGH_SHARED_WRITES buffer LghPartials { LghBoundsPartial partials[]; };
+layout(std430, binding = LGH_BIND_BUILD_LIGHTS) readonly buffer LghLights { PointLight lights[]; };
+layout(std430, binding = LGH_BIND_BUILD_LEVELS) LGH_SHARED_WRITES buffer LghLevels { LghLevelTable lgh; };
+layout(std430, binding = LGH_BIND_BUILD_STATE) LGH_SHARED_WRITES buffer LghStateBuffer { LghState st; };
+layout(std430, binding = LGH_BIND_BUILD_PARTIALS) LGH_SHARED_WRITES buffer LghPartials { LghBoundsPartial partials[]; };
 #ifdef LGH_FLOAT_ATOMICS
-layout(std430, binding = 4) buffer LghAccum { float accum[]; };
+layout(std430, binding = LGH_BIND_BUILD_ACCUM) buffer LghAccum { float accum[]; };
 #define LGH_ACCUM_STRIDE 9u
 #else
-layout(std430, binding = 4) buffer LghAccum { uint accum[]; };
+layout(std430, binding = LGH_BIND_BUILD_ACCUM) buffer LghAccum { uint accum[]; };
 #define LGH_ACCUM_STRIDE 18u
 #endif
-layout(std430, binding = 5) writeonly buffer LghGridLights { GridLight gridLights[]; };
-layout(std430, binding = 6) buffer LghRecords { LghS1Record s1Records[]; };
-layout(std430, binding = 7) buffer LghRank { uint s1Rank[]; };
-layout(std430, binding = 8) LGH_SHARED_WRITES buffer LghBitmaps { uint bitmap[]; };
-layout(std430, binding = 9) LGH_SHARED_WRITES buffer LghBlocks { uint blockData[]; };
-layout(std430, binding = 10) writeonly buffer LghDraws { uvec4 draws[]; };
+layout(std430, binding = LGH_BIND_BUILD_GRID_LIGHTS) writeonly buffer LghGridLights { GridLight gridLights[]; };
+layout(std430, binding = LGH_BIND_BUILD_RECORDS) buffer LghRecords { LghS1Record s1Records[]; };
+layout(std430, binding = LGH_BIND_BUILD_RANK) buffer LghRank { uint s1Rank[]; };
+layout(std430, binding = LGH_BIND_BUILD_BITMAPS) LGH_SHARED_WRITES buffer LghBitmaps { uint bitmap[]; };
+layout(std430, binding = LGH_BIND_BUILD_BLOCKS) LGH_SHARED_WRITES buffer LghBlocks { uint blockData[]; };
+layout(std430, binding = LGH_BIND_BUILD_DRAWS) writeonly buffer LghDraws { uvec4 draws[]; };
 // One bit per dense vertex: set by whoever accumulates into it, so the compaction reads (and
 // clears) only touched vertices instead of streaming the whole dense grid twice.
-layout(std430, binding = 11) buffer LghTouched { uint touched[]; };
+layout(std430, binding = LGH_BIND_BUILD_TOUCHED) buffer LghTouched { uint touched[]; };
 // Binned S1 (lgh_bin_*.comp, which define LGH_BINNED: Mesa counts declared blocks against the
 // limit of 16 per compute shader, used or not). binCount: lights per tile, zero between builds
 // (the bin scatter counts every light back down). binStart: tiles + 1 exclusive offsets.
 // binItems: (tile, chunk) work items. binLights aliases the S1 records' buffer, which is only
 // written after S1.
 #ifdef LGH_BINNED
-layout(std430, binding = 12) LGH_SHARED_WRITES buffer LghBinCount { uint binCount[]; };
-layout(std430, binding = 13) LGH_SHARED_WRITES buffer LghBinStart { uint binStart[]; };
-layout(std430, binding = 14) LGH_SHARED_WRITES buffer LghBinItems { uvec2 binItems[]; };
-layout(std430, binding = 6) buffer LghBinLights { LghBinLight binLights[]; };
+layout(std430, binding = LGH_BIND_BUILD_BIN_COUNT) LGH_SHARED_WRITES buffer LghBinCount { uint binCount[]; };
+layout(std430, binding = LGH_BIND_BUILD_BIN_START) LGH_SHARED_WRITES buffer LghBinStart { uint binStart[]; };
+layout(std430, binding = LGH_BIND_BUILD_BIN_ITEMS) LGH_SHARED_WRITES buffer LghBinItems { uvec2 binItems[]; };
+layout(std430, binding = LGH_BIND_BUILD_RECORDS) buffer LghBinLights { LghBinLight binLights[]; };
 #endif
 
 // Non-finite test on the bit pattern: drivers may fold isnan/isinf away under fast math.
@@ -278,8 +259,8 @@ uint lghGroupExclusiveScan(uint value, out uint total) {
 }
 
 // ---- last work group -------------------------------------------------------------------------------
-// Fuses a one-group epilogue into a kernel instead of a dependent dispatch (about 10 us each on
-// an H100): every group publishes its result, fences it, and counts itself done; the group that
+// Fuses a one-group epilogue into a kernel instead of a dependent dispatch (each costs a GPU-wide
+// drain and refill): every group publishes its result, fences it, and counts itself done; the group that
 // counts last sees every result (the buffers it reads are coherent) and runs the epilogue.
 // Every group of the dispatch must call this exactly once, in uniform control flow.
 shared bool s_lghLast;
@@ -513,7 +494,7 @@ uvec4 lghGatherWork(uint l) {
   uint vertices = lgh.level[l - 1u].dims.w;
   uint packedBox = box.y | (box.z << 16);
   // One thread per vertex only when there are enough vertices to fill the GPU; otherwise a few
-  // long serial threads set the pace (0.14 ms for 729 vertices on an H100).
+  // long serial threads set the pace.
   if (box.x * rows <= LGH_THREAD_GATHER_MAX && vertices >= LGH_THREAD_GATHER_MIN_VERTICES) {
     return uvec4(0u, lghCeilDiv(vertices, LGH_GROUP), 0u, packedBox);
   }

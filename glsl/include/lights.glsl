@@ -15,7 +15,7 @@ struct Light {
   vec4 directionRange;   // xyz unit direction the light points to, w range (0: none)
   vec4 colorIntensity;   // rgb colour, w intensity
   vec4 attenuation;      // kc, kl, kq, spot exponent
-  vec4 cone;             // cos(inner), cos(outer), unused, unused
+  vec4 cone;             // cos(inner), cos(outer), shadow size (radius or angular radius), unused
 };
 
 float distanceAttenuation(Light light, float d) {

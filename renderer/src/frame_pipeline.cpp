@@ -51,7 +51,7 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   uploadLights(lights, lightBuffer_);
   {
     gl::ScopedGpuPass pass(timer, "gbuffer");
-    gbufferPass_.run(cached.scene, *cached.gpu, camera, targets_);
+    gbufferPass_.run(cached.scene, *cached.gpu, camera, request.settings.primitives, targets_);
   }
   LghFrameLighting::ShadowSamples samples;
   if (lgh.enabled) {

@@ -26,6 +26,9 @@ class FramePipeline {
   explicit FramePipeline(ShadowDevice* shadowDevice = nullptr);
   ~FramePipeline();
   // `probe` (tests and the benchmark) asks an LGH frame for its intermediate results.
+  // How the last shadowed frame handed its rays to Vulkan ("" before any).
+  std::string shadowTransport() const { return shadows_.transportName(); }
+
   void render(const RenderRequest& request, const CachedScene& scene, gl::GpuTimer& timer,
               FrameReport& report, LghFrameProbe* probe = nullptr);
 

@@ -45,6 +45,11 @@ inline std::string countLabel(int count) {
 Command addConstructCommand(CLI::App& app, const cli::ContextFlags& context);
 // `lgh-bench render`: full LGH frames (server/bench/render.cpp).
 Command addRenderCommand(CLI::App& app, const cli::ContextFlags& context);
+// `lgh-bench shadows`: shadowed frames and acceleration-structure builds
+// (server/bench/shadows.cpp).
+Command addShadowsCommand(CLI::App& app, const cli::ContextFlags& context);
+// `lgh-bench handoff`: the GL -> Vulkan hand-off in and out of process (server/bench/handoff.cpp).
+Command addHandoffCommand(CLI::App& app, const cli::ContextFlags& context);
 // `lgh-bench scene-load`: scene parsing in this process and in the worker process
 // (server/bench/scene_load.cpp).
 Command addSceneLoadCommand(CLI::App& app, const cli::ContextFlags& context);

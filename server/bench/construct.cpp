@@ -47,9 +47,8 @@ int parseLevels(const std::string& text) {
 }
 
 std::vector<LghSettings::Method> parseMethods(const std::string& text) {
-  if (text == "gather") return {LghSettings::Method::Gather};
-  if (text == "scatter") return {LghSettings::Method::Scatter};
-  return {LghSettings::Method::Gather, LghSettings::Method::Scatter};
+  if (text == "both") return {LghSettings::Method::Gather, LghSettings::Method::Scatter};
+  return {cli::enumValue<LghBuildMethod>(text)};
 }
 
 // Column labels name the method and the S1 path only when the runs differ in them.
@@ -145,7 +144,11 @@ Command addConstructCommand(CLI::App& app, const cli::ContextFlags& context) {
       ->capture_default_str();
   sub->add_option("--method", flags->method,
                   "gather (from S1, the paper's), scatter (every level), both")
-      ->check(CLI::IsMember({"gather", "scatter", "both"}))
+      ->check(CLI::IsMember([] {
+        auto names = cli::enumChoices<LghBuildMethod>();
+        names.emplace_back("both");
+        return names;
+      }()))
       ->capture_default_str();
   sub->add_option("--levels", flags->levels, "levels L, or auto (largest L with |S1| < N/2)")
       ->capture_default_str();

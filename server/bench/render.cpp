@@ -22,8 +22,8 @@ struct RenderFlags {
   std::vector<int> vpls{1000, 10000, 100000, 1000000};
   int width = 1280;
   int height = 720;
-  std::vector<std::string> paths{"raster", "compute"};
-  std::vector<std::string> interleaves{"none", "2x2", "4x4"};
+  std::vector<std::string> paths = cli::enumChoices<LightingPath>({"auto"});
+  std::vector<std::string> interleaves = cli::enumChoices<InterleaveMode>();
   std::vector<int> samples{1, 4};
   float alpha = 1.0F;
   std::string locks = "paper";
@@ -92,23 +92,12 @@ std::string progressLine(const RenderRun& run) {
   return line;
 }
 
-std::vector<LightingPath> parsePaths(const std::vector<std::string>& names) {
-  std::vector<LightingPath> paths;
-  paths.reserve(names.size());
-  for (const auto& name : names) {
-    paths.push_back(name == "raster" ? LightingPath::Raster : LightingPath::Compute);
-  }
-  return paths;
-}
-
-std::vector<InterleaveMode> parseInterleaves(const std::vector<std::string>& names) {
-  std::vector<InterleaveMode> modes;
-  for (const auto& name : names) {
-    if (name == "none") modes.push_back(InterleaveMode::None);
-    if (name == "2x2") modes.push_back(InterleaveMode::Tiles2x2);
-    if (name == "4x4") modes.push_back(InterleaveMode::Tiles4x4);
-  }
-  return modes;
+template <typename Enum>
+std::vector<Enum> parseEnums(const std::vector<std::string>& names) {
+  std::vector<Enum> values;
+  values.reserve(names.size());
+  for (const auto& name : names) values.push_back(cli::enumValue<Enum>(name));
+  return values;
 }
 
 int runRender(const RenderFlags& flags, const cli::ContextFlags& context) {
@@ -116,8 +105,8 @@ int runRender(const RenderFlags& flags, const cli::ContextFlags& context) {
   options.vplCounts = flags.vpls;
   options.width = flags.width;
   options.height = flags.height;
-  options.paths = parsePaths(flags.paths);
-  options.interleaves = parseInterleaves(flags.interleaves);
+  options.paths = parseEnums<LightingPath>(flags.paths);
+  options.interleaves = parseEnums<InterleaveMode>(flags.interleaves);
   options.shadowSamples = flags.samples;
   options.alpha = flags.alpha;
   options.locks = flags.locks;
@@ -152,11 +141,11 @@ Command addRenderCommand(CLI::App& app, const cli::ContextFlags& context) {
       ->capture_default_str();
   sub->add_option("--paths", flags->paths, "lighting paths: raster, compute")
       ->delimiter(',')
-      ->check(CLI::IsMember({"raster", "compute"}))
+      ->check(CLI::IsMember(cli::enumChoices<LightingPath>({"auto"})))
       ->capture_default_str();
   sub->add_option("--interleave", flags->interleaves, "interleaving: none, 2x2, 4x4")
       ->delimiter(',')
-      ->check(CLI::IsMember({"none", "2x2", "4x4"}))
+      ->check(CLI::IsMember(cli::enumChoices<InterleaveMode>()))
       ->capture_default_str();
   sub->add_option("--samples", flags->samples, "shadow samples per pixel (1..8), comma separated")
       ->delimiter(',')

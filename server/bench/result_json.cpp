@@ -118,4 +118,54 @@ void to_json(nlohmann::json& j, const RenderBenchmarkResult& result) {
        {"runs", result.runs}};
 }
 
+void to_json(nlohmann::json& j, const ShadowRun& run) {
+  j = {{"path", std::string(enumName(run.path))},
+       {"shadow_samples", run.shadowSamples},
+       {"rays_per_pixel", run.raysPerPixel},
+       {"transport", run.transport},
+       {"passes", run.passes},
+       {"rays_ms", run.raysMs},
+       {"filter_ms", run.filterMs},
+       {"rays_plus_filter_ms", run.raysMs + run.filterMs},
+       {"frame_gpu_ms", run.frameGpuMs},
+       {"rays_per_second", run.raysPerSecond}};
+}
+
+void to_json(nlohmann::json& j, const ShadowBuild& build) {
+  j = {{"scene", build.scene}, {"triangles", build.triangles}, {"build", build.build}};
+}
+
+void to_json(nlohmann::json& j, const ShadowBenchmarkResult& result) {
+  const ShadowBenchmarkOptions& o = result.options;
+  j = {{"benchmark", "lgh-shadows"},
+       {"device", result.device.toJson()},
+       {"shadows", result.shadows.toJson()},
+       {"settings",
+        {{"width", o.width},
+         {"height", o.height},
+         {"vpls", o.vpls},
+         {"shadow_samples", o.shadowSamples},
+         {"filter_iterations", o.filterIterations},
+         {"warmup_iterations", o.warmupIterations},
+         {"warmup_seconds", o.warmupSeconds},
+         {"timed_iterations", o.timedIterations},
+         {"build_triangles", o.buildTriangles},
+         {"build_iterations", o.buildIterations}}},
+       {"runs", result.runs},
+       {"builds", result.builds}};
+}
+
+void to_json(nlohmann::json& j, const HandoffBenchmarkResult& result) {
+  j = {{"benchmark", "lgh-handoff"},
+       {"device", result.device.toJson()},
+       {"shadows", result.shadows.toJson()},
+       {"transport", result.transport},
+       {"settings",
+        {{"iterations", result.options.iterations},
+         {"warmup_iterations", result.options.warmupIterations}}},
+       {"in_process_batch", result.inProcessBatch},
+       {"socket_round_trip", result.socketRoundTrip},
+       {"fd_passing", result.fdPassing}};
+}
+
 }  // namespace lgh::bench

@@ -7,7 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "lgh/bench/construct_benchmark.hpp"
+#include "lgh/bench/handoff_benchmark.hpp"
 #include "lgh/bench/render_benchmark.hpp"
+#include "lgh/bench/shadow_benchmark.hpp"
 #include "lgh/bench/statistics.hpp"
 
 namespace lgh::bench {
@@ -34,5 +36,18 @@ void to_json(nlohmann::json& j, const RenderRun& run);
 // {"benchmark": "lgh-render", "device", "settings", "references": [RenderReference],
 //  "runs": [RenderRun]}
 void to_json(nlohmann::json& j, const RenderBenchmarkResult& result);
+
+// {"path", "shadow_samples", "rays_per_pixel", "transport", "passes": [TimingStats], "rays_ms",
+//  "filter_ms", "rays_plus_filter_ms", "frame_gpu_ms", "rays_per_second"}
+void to_json(nlohmann::json& j, const ShadowRun& run);
+// {"scene", "triangles", "build": TimingStats}
+void to_json(nlohmann::json& j, const ShadowBuild& build);
+// {"benchmark": "lgh-shadows", "device", "shadows", "settings", "runs": [ShadowRun],
+//  "builds": [ShadowBuild]}
+void to_json(nlohmann::json& j, const ShadowBenchmarkResult& result);
+
+// {"benchmark": "lgh-handoff", "device", "shadows", "transport", "settings",
+//  "in_process_batch", "socket_round_trip", "fd_passing": TimingStats}
+void to_json(nlohmann::json& j, const HandoffBenchmarkResult& result);
 
 }  // namespace lgh::bench

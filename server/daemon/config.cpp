@@ -14,7 +14,8 @@ namespace {
 
 constexpr const char* kDescription =
     "lghd: headless GPU render service. POST a render request (JSON, see /openapi.json) to\n"
-    "/v1/render and get a PNG or EXR back; POST /v1/thumbnails renders a batch of glTF assets.\n"
+    "/v1/render and get a PNG or EXR back; POST /v1/thumbnails renders a batch of glTF assets;\n"
+    "POST /v1/jobs takes long work (a render, a batch, a benchmark) and answers 202 at once.\n"
     "With no flags it serves the built-in demo scene on 127.0.0.1:8080:\n"
     "  lghd &\n"
     "  curl -s -X POST localhost:8080/v1/render -d '{}' -o demo.png\n"
@@ -33,6 +34,10 @@ struct RawFlags {
   int testRenderDelayMs = 0;
   std::string authTokenFile;
   std::string sceneWorker = "on";
+  std::size_t jobsMemoryMb = 1024;
+  double jobTtlSeconds = 600.0;
+  double jobDeadlineSeconds = 600.0;
+  std::string corsOrigins;
 };
 
 void addServerFlags(CLI::App& app, DaemonConfig& config, RawFlags& raw) {
@@ -75,6 +80,11 @@ void addServerFlags(CLI::App& app, DaemonConfig& config, RawFlags& raw) {
       ->envname("LGHD_GRACE_SECONDS")
       ->check(CLI::Range(0.0, 3600.0))
       ->capture_default_str()
+      ->group(group);
+  app.add_option("--cors-origin", raw.corsOrigins,
+                 "answer browsers from these origins (comma-separated, or *) with CORS headers; "
+                 "preflight requests are answered before authentication")
+      ->envname("LGHD_CORS_ORIGIN")
       ->group(group);
   app.add_option("--log-format", config.logFormat, "json (one object per line) or text")
       ->envname("LGHD_LOG_FORMAT")
@@ -163,6 +173,52 @@ void addSceneWorkerLimitFlags(CLI::App& app, DaemonConfig& config) {
       ->group(group);
 }
 
+void addJobFlags(CLI::App& app, JobLimits& jobs, RawFlags& raw) {
+  const char* group = "Jobs (POST /v1/jobs)";
+  app.add_option("--max-jobs", jobs.maxJobs,
+                 "jobs held at once (queued, running, finished within the TTL); beyond: 429")
+      ->envname("LGHD_MAX_JOBS")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--jobs-memory-mb", raw.jobsMemoryMb,
+                 "memory for job results, MiB (a job reserves its result's upper bound)")
+      ->envname("LGHD_JOBS_MEMORY_MB")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--job-ttl-seconds", raw.jobTtlSeconds,
+                 "how long a finished job's status and result are kept")
+      ->envname("LGHD_JOB_TTL_SECONDS")
+      ->check(CLI::Range(1.0, 7.0 * 86400.0))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--max-job-batch", jobs.maxBatch,
+                 "thumbnails (assets x views) or benchmark renders in one job")
+      ->envname("LGHD_MAX_JOB_BATCH")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--job-deadline-seconds", raw.jobDeadlineSeconds,
+                 "deadline of each render of a job (queue wait + render)")
+      ->envname("LGHD_JOB_DEADLINE_SECONDS")
+      ->check(CLI::Range(0.001, 86400.0))
+      ->capture_default_str()
+      ->group(group);
+}
+
+std::vector<std::string> splitOrigins(const std::string& list) {
+  std::vector<std::string> origins;
+  std::stringstream stream(list);
+  for (std::string origin; std::getline(stream, origin, ',');) {
+    const auto begin = origin.find_first_not_of(" \t");
+    if (begin == std::string::npos) continue;
+    const auto end = origin.find_last_not_of(" \t");
+    origins.push_back(origin.substr(begin, end - begin + 1));
+  }
+  return origins;
+}
+
 void addContextEnvNames(CLI::App& app) {
   app.get_option("--backend")->envname("LGHD_BACKEND")->group("GPU and context");
   app.get_option("--gpu")->envname("LGHD_GPU")->group("GPU and context");
@@ -194,6 +250,10 @@ void applyRawFlags(const RawFlags& raw, DaemonConfig& config) {
   config.testRenderDelay = std::chrono::milliseconds(raw.testRenderDelayMs);
   config.sceneWorker = raw.sceneWorker == "on";
   if (!raw.authTokenFile.empty()) config.authToken = readTokenFile(raw.authTokenFile);
+  config.jobs.memoryBytes = raw.jobsMemoryMb << 20;
+  config.jobs.ttl = fromSeconds<std::chrono::seconds>(raw.jobTtlSeconds);
+  config.jobs.renderDeadline = fromSeconds<std::chrono::milliseconds>(raw.jobDeadlineSeconds);
+  config.corsOrigins = splitOrigins(raw.corsOrigins);
 }
 
 }  // namespace
@@ -243,6 +303,7 @@ ParsedConfig parseConfig(int argc, char** argv) {
   addRenderFlags(app, config, raw);
   addLimitFlags(app, config.limits, raw);
   addSceneWorkerLimitFlags(app, config);
+  addJobFlags(app, config.jobs, raw);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cli_common.hpp"
 #include "lgh/renderer.hpp"
@@ -26,6 +27,16 @@ struct Limits {
   int maxTextureSize = 8192;
   std::size_t maxTextureMb = 2048;  // all textures of one scene, decoded
   int maxBatch = 64;
+};
+
+// Jobs for long work (POST /v1/jobs, jobs.hpp). Each render of a job gets `renderDeadline`
+// instead of --deadline-seconds; the other limits are those of synchronous requests.
+struct JobLimits {
+  int maxJobs = 64;  // held at once: queued, running, or finished and not yet expired
+  std::size_t memoryBytes = 1024ULL << 20;  // results held plus reservations of unfinished jobs
+  std::chrono::seconds ttl{600};            // how long a finished job's status and result stay
+  int maxBatch = 4096;  // thumbnails (assets x views) or benchmark renders in one job
+  std::chrono::milliseconds renderDeadline{600'000};
 };
 
 struct DaemonConfig {
@@ -49,6 +60,8 @@ struct DaemonConfig {
   double sceneWorkerTimeoutSeconds = 120.0;
   std::string testSceneWorkerCrashMarker;  // FOR TESTS ONLY
   Limits limits;
+  JobLimits jobs;
+  std::vector<std::string> corsOrigins;  // empty: no CORS; "*": any origin
   lgh::cli::ContextFlags context;
 
   lgh::RendererOptions rendererOptions() const;

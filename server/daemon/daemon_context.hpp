@@ -1,7 +1,9 @@
-// What every route handler works with: the configuration, the render queue and the metrics.
+// What every route handler works with: the configuration, the render queue, the job store and
+// the metrics.
 #pragma once
 
 #include "config.hpp"
+#include "jobs.hpp"
 #include "metrics.hpp"
 #include "render_queue.hpp"
 
@@ -12,6 +14,7 @@ struct DaemonContext {
   lgh::RequestLimits requestLimits;
   RenderQueue& queue;
   Metrics& metrics;
+  JobStore& jobs;
 };
 
 }  // namespace lghd

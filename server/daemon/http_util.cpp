@@ -32,13 +32,6 @@ nlohmann::json parseJsonBody(const std::string& body) {
   return lgh::parseRequestJson(body);
 }
 
-bool wantsJson(const httplib::Request& request) {
-  const std::string accept = request.get_header_value("Accept");
-  const std::size_t json = accept.find("application/json");
-  const std::size_t image = accept.find("image/");
-  return json != std::string::npos && (image == std::string::npos || json < image);
-}
-
 Clock::time_point deadlineFor(const httplib::Request& request, const DaemonConfig& config) {
   const auto now = Clock::now();
   const std::string header = request.get_header_value("X-Lgh-Deadline-Ms");

@@ -26,9 +26,6 @@ void sendError(httplib::Response& response, const ApiError& error);
 // byte of a syntax error, 413 past the nesting or value limits of request JSON.
 nlohmann::json parseJsonBody(const std::string& body);
 
-// Whether the client asked for a JSON answer: Accept names application/json, before any image/*.
-bool wantsJson(const httplib::Request& request);
-
 // The request's deadline: now + the configured deadline, or sooner when the client's
 // X-Lgh-Deadline-Ms header asks for less. Throws ApiError 400 for a malformed header.
 Clock::time_point deadlineFor(const httplib::Request& request, const DaemonConfig& config);

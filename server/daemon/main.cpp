@@ -37,12 +37,13 @@ void stopListening(httplib::Server& server, const std::atomic<bool>& listenRetur
   if (!listenReturned) server.stop();
 }
 
-void shutdownSequence(const DaemonConfig& config, RenderQueue& queue, httplib::Server& server,
-                      const std::atomic<bool>& listenReturned) {
+void shutdownSequence(const DaemonConfig& config, RenderQueue& queue, JobStore& jobs,
+                      httplib::Server& server, const std::atomic<bool>& listenReturned) {
   logging::event(spdlog::level::info, "shutdown", {{"grace_ms", config.grace.count()}});
   queue.stopAccepting();
   stopListening(server, listenReturned);
   const bool drained = queue.drain(config.grace);
+  jobs.stop();  // the runner's next render would be refused: unfinished jobs fail with 503
   logging::event(spdlog::level::info, "drained", {{"all_finished", drained}});
 }
 
@@ -63,8 +64,9 @@ int serve(const DaemonConfig& config) {
   RenderQueue queue({config.rendererOptions(), static_cast<std::size_t>(config.queueDepth),
                      config.testRenderDelay},
                     metrics);
+  JobStore jobs(config.jobs, queue);
   HttpServer server;
-  DaemonContext context{config, config.requestLimits(), queue, metrics};
+  DaemonContext context{config, config.requestLimits(), queue, metrics, jobs};
   configureServer(server, context);
   server.setRejectionListener([&metrics](const FramedServer::Rejection& rejection) {
     metrics.recordRequest("other", "", rejection.error.status, 0.0);
@@ -93,13 +95,15 @@ int serve(const DaemonConfig& config) {
 
   std::atomic<bool> listenReturned = false;
   ShutdownSupervisor supervisor;
-  supervisor.start([&] { shutdownSequence(config, queue, server, listenReturned); });
+  supervisor.start([&] { shutdownSequence(config, queue, jobs, server, listenReturned); });
   queue.start([&supervisor](const std::string& reason) { supervisor.requestStop(1, reason); });
+  jobs.start();
   server.listen_after_bind();
   listenReturned = true;
   supervisor.requestStop(0, "the HTTP server stopped");  // no-op after a signal
   supervisor.join();
 
+  jobs.stop();  // after a fatal context failure no shutdown sequence ran
   if (!queue.stop(kRenderThreadStopWait)) {
     logging::event(spdlog::level::critical, "render_thread_stuck",
                    {{"note", "exiting without releasing the GL context"}});

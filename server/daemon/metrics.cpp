@@ -115,6 +115,11 @@ void Metrics::recordRenderTimes(const lgh::TimingTable& timings, double queueSec
   }
 }
 
+void Metrics::recordShadows(const std::string& shadows) {
+  std::lock_guard lock(mutex_);
+  ++shadows_[fmt::format("shadows=\"{}\"", escapeLabel(shadows))];
+}
+
 void Metrics::recordThumbnail(const std::string& status) {
   std::lock_guard lock(mutex_);
   ++thumbnails_[fmt::format("status=\"{}\"", status)];
@@ -143,6 +148,25 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
         static_cast<double>(gauges.sceneCacheBytes));
   gauge(out, "lghd_scene_cache_budget_bytes", "GPU memory budget of the scene cache.",
         static_cast<double>(gauges.sceneCacheBudgetBytes));
+  gauge(out, "lghd_shadow_tracer_ready",
+        "1 when the Vulkan shadow tracer is up, 0 when this machine cannot trace shadows (see "
+        "/v1/info), -1 until a frame has asked for shadows.",
+        gauges.shadowTracer);
+  header(out, "lghd_gl_objects", "gauge",
+         "Live GL objects by kind (a leak shows as growth over many renders).");
+  for (const auto& [kind, count] : gauges.resources.glObjects) {
+    out += fmt::format("lghd_gl_objects{{kind=\"{}\"}} {}\n", escapeLabel(kind), count);
+  }
+  const auto bytesOrUnknown = [](std::int64_t kib) {
+    return kib >= 0 ? static_cast<double>(kib) * 1024.0 : -1.0;
+  };
+  gauge(out, "lghd_gpu_memory_available_bytes",
+        "GPU memory available as the driver reports it (GL_NVX_gpu_memory_info); -1 where it "
+        "does not say.",
+        bytesOrUnknown(gauges.resources.gpuMemoryAvailableKiB));
+  gauge(out, "lghd_gpu_memory_total_bytes",
+        "GPU memory in all (GL_NVX_gpu_memory_info); -1 where the driver does not say.",
+        bytesOrUnknown(gauges.resources.gpuMemoryTotalKiB));
 
   std::lock_guard lock(mutex_);
   header(out, "lghd_http_requests_total", "counter",
@@ -166,6 +190,10 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
   queueWaitSeconds_.write(out, "lghd_queue_wait_seconds", "");
   header(out, "lghd_thumbnails_total", "counter", "Thumbnails rendered in batches, by status.");
   counterLines(out, "lghd_thumbnails_total", thumbnails_);
+  header(out, "lghd_render_shadows_total", "counter",
+         "Renders by how their shadows were traced: ray-query, pipeline, none (the machine cannot "
+         "trace: unshadowed with a warning), off (the request asked for none).");
+  counterLines(out, "lghd_render_shadows_total", shadows_);
   return out;
 }
 

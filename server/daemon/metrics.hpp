@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "lgh/resource_stats.hpp"
 #include "lgh/timing.hpp"
 
 namespace lghd {
@@ -38,6 +39,9 @@ struct RuntimeGauges {
   std::size_t sceneCacheEntries = 0;
   std::size_t sceneCacheBytes = 0;
   std::size_t sceneCacheBudgetBytes = 0;
+  // The shadow side: 1 ready, 0 unavailable, -1 no frame has asked for shadows yet.
+  int shadowTracer = -1;
+  lgh::ResourceStats resources;  // live GL objects and GPU memory, as of the last render
 };
 
 class Metrics {
@@ -49,6 +53,8 @@ class Metrics {
   // then: result discarded) or "skipped" (never started: deadline passed or cancelled).
   void recordRender(const std::string& outcome);
   void recordRenderTimes(const lgh::TimingTable& timings, double queueSeconds, bool cacheHit);
+  // How a render's shadows were made (its decision "shadows": ray-query, pipeline, none, off).
+  void recordShadows(const std::string& shadows);
   void recordThumbnail(const std::string& status);
 
   std::string exposition(const RuntimeGauges& gauges) const;
@@ -63,6 +69,7 @@ class Metrics {
   std::map<Labels, Histogram> renderSeconds_;   // cache
   Histogram queueWaitSeconds_{{0.001, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 2.5, 5, 10, 30}};
   std::map<Labels, std::uint64_t> thumbnails_;  // status
+  std::map<Labels, std::uint64_t> shadows_;     // shadows
 };
 
 // `value` escaped for a label value: backslash, double quote and newline.

@@ -33,8 +33,9 @@ void RenderQueue::start(FatalHandler onFatal) {
   onFatal_ = std::move(onFatal);
   thread_ = std::thread([this] { run(); });
   // In a child process (see vulkan_probe_process.hpp), waited for on a thread of its own so that
-  // readiness does not wait for it (~0.3 s on the H100). It starts once the renderer is up: run
-  // beside the GL bring-up it slowed the H100's start-up from ~0.10 s to ~0.18 s.
+  // readiness does not wait for it (a Vulkan instance takes a large part of a second to make). It
+  // starts once the renderer is up: run beside the GL bring-up, it slowed the start-up
+  // (docs/BENCHMARKS.md, "Start-up").
   vulkanProbe_ = std::thread([slot = vulkan_] {
     {
       std::unique_lock lock(slot->mutex);
@@ -159,6 +160,10 @@ RuntimeGauges RenderQueue::gauges() const {
   gauges.sceneCacheEntries = cacheStats_.entries;
   gauges.sceneCacheBytes = cacheStats_.bytes;
   gauges.sceneCacheBudgetBytes = options_.renderer.sceneCacheBytes;
+  gauges.resources = resources_;
+  gauges.shadowTracer = shadowInfo_.status == "ready"         ? 1
+                        : shadowInfo_.status == "unavailable" ? 0
+                                                              : -1;
   return gauges;
 }
 
@@ -242,7 +247,7 @@ bool RenderQueue::bringUpRenderer() {
     if (onFatal_) onFatal_(error.what());
     return false;
   }
-  publishCacheStats();
+  publishRendererState();
   std::lock_guard lock(mutex_);
   device_ = renderer_->device();
   state_ = State::Ready;
@@ -304,9 +309,12 @@ void RenderQueue::renderTicket(const RenderJob& job, RenderTicket& ticket) {
   if (options_.testRenderDelay.count() > 0) std::this_thread::sleep_for(options_.testRenderDelay);
   try {
     lgh::RenderResult result = renderer_->render(ticket.request());
-    publishCacheStats();
+    publishRendererState();
     metrics_.recordRenderTimes(result.timings, secondsBetween(job.enqueued, start),
                                result.sceneCacheHit);
+    if (const auto shadows = result.decisions.find("shadows"); shadows != result.decisions.end()) {
+      metrics_.recordShadows(shadows->second);
+    }
     if (ticket.complete(std::move(result))) {
       metrics_.recordRender("ok");
     } else {
@@ -317,7 +325,10 @@ void RenderQueue::renderTicket(const RenderJob& job, RenderTicket& ticket) {
   } catch (const lgh::Error& error) {
     ticket.fail(fromLghError(error));
     metrics_.recordRender("error");
-    if (error.code() == lgh::ErrorCode::Internal) recoverRenderer(error.what());
+    // A GL failure may have broken the context, and a lost one (GPU reset) certainly has.
+    if (error.code() == lgh::ErrorCode::Internal || !renderer_->healthy()) {
+      recoverRenderer(error.what());
+    }
   } catch (const std::exception& error) {
     ticket.fail(internalError(error.what()));
     metrics_.recordRender("error");
@@ -328,10 +339,24 @@ void RenderQueue::renderTicket(const RenderJob& job, RenderTicket& ticket) {
   averageRenderSeconds_ = 0.8 * averageRenderSeconds_ + 0.2 * seconds;
 }
 
-void RenderQueue::publishCacheStats() {
+void RenderQueue::publishRendererState() {
   const lgh::Renderer::CacheStats stats = renderer_->sceneCacheStats();
+  lgh::ShadowInfo shadows = renderer_->shadowInfo();
+  lgh::ResourceStats resources = renderer_->resourceStats();
   std::lock_guard lock(mutex_);
   cacheStats_ = stats;
+  shadowInfo_ = std::move(shadows);
+  resources_ = std::move(resources);
+}
+
+lgh::ResourceStats RenderQueue::resources() const {
+  std::lock_guard lock(mutex_);
+  return resources_;
+}
+
+lgh::ShadowInfo RenderQueue::shadows() const {
+  std::lock_guard lock(mutex_);
+  return shadowInfo_;
 }
 
 }  // namespace lghd

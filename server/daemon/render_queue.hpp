@@ -66,6 +66,10 @@ class RenderQueue {
   std::optional<lgh::VulkanInfo> vulkan() const;
   // Queue and scene-cache values for /metrics and /v1/info.
   RuntimeGauges gauges() const;
+  // The renderer's shadow side, as of its last render.
+  lgh::ShadowInfo shadows() const;
+  // Live GL objects and GPU memory, as of the last render.
+  lgh::ResourceStats resources() const;
 
   // Shutdown, in this order: refuse new jobs (503); let queued jobs finish for up to `grace`, then
   // answer what is left 503 (returns whether everything finished); end the render thread, waiting
@@ -86,7 +90,7 @@ class RenderQueue {
   void runJob(RenderJob& job);
   void renderTicket(const RenderJob& job, RenderTicket& ticket);
   void finishJob();
-  void publishCacheStats();
+  void publishRendererState();
   int retryAfterSeconds() const;  // under mutex_
   void failAll(RenderJob& job, const ApiError& error);
 
@@ -118,6 +122,8 @@ class RenderQueue {
   std::shared_ptr<VulkanSlot> vulkan_ = std::make_shared<VulkanSlot>();
   std::thread vulkanProbe_;
   lgh::Renderer::CacheStats cacheStats_;
+  lgh::ShadowInfo shadowInfo_;
+  lgh::ResourceStats resources_;
   double averageRenderSeconds_ = 0.1;
   std::thread thread_;
 };

@@ -11,6 +11,8 @@ namespace lghd {
 void addRenderRoutes(httplib::Server& server, DaemonContext& context);
 // POST /v1/thumbnails
 void addThumbnailRoutes(httplib::Server& server, DaemonContext& context);
+// POST /v1/jobs, GET and DELETE /v1/jobs/{id}, GET /v1/jobs/{id}/result
+void addJobRoutes(httplib::Server& server, DaemonContext& context);
 // GET /healthz, /readyz, /v1/info, /metrics
 void addStatusRoutes(httplib::Server& server, DaemonContext& context);
 // GET /healthz, /readyz, /metrics only (the --metrics-port listener)

@@ -2,6 +2,7 @@
 // named "request" and the scene uploaded in "file" parts. Answers the image, or JSON when the
 // client accepts application/json.
 #include "clock.hpp"
+#include "http_conventions.hpp"
 #include "http_util.hpp"
 #include "render_response.hpp"
 #include "routes.hpp"
@@ -9,6 +10,10 @@
 
 namespace lghd {
 namespace {
+
+std::string_view imageMimeType(lgh::ImageFormat format) {
+  return format == lgh::ImageFormat::Png ? "image/png" : "image/x-exr";
+}
 
 lgh::RenderRequest parseUpload(const httplib::Request& http, const lgh::RequestLimits& limits) {
   const nlohmann::json json = requestPartJson(http);
@@ -32,6 +37,9 @@ void render(DaemonContext& context, const httplib::Request& http, httplib::Respo
   const std::string requestId = requestIdOf(response);
   const Clock::time_point deadline = deadlineFor(http, context.config);
   lgh::RenderRequest request = parseRender(http, context.requestLimits);
+  // Negotiated before the render: a 406 costs no GPU time.
+  const std::string mime =
+      chooseMediaType(http, {imageMimeType(request.output.format), "application/json"});
   const int width = request.output.width;
   const int height = request.output.height;
   const auto job = context.queue.submit({std::move(request)}, requestId, deadline);
@@ -42,7 +50,7 @@ void render(DaemonContext& context, const httplib::Request& http, httplib::Respo
       millisecondsBetween(job->enqueued, ticket.started().value_or(job->enqueued));
   const RenderAnswer answer{result, width, height, queueMs, requestId};
   setRenderHeaders(response, answer);
-  if (wantsJson(http)) {
+  if (mime == "application/json") {
     sendJson(response, 200, renderResponseJson(answer));
     return;
   }

@@ -3,6 +3,7 @@
 #include <httplib.h>
 
 #include "http_util.hpp"
+#include "process_metrics.hpp"
 #include "routes.hpp"
 #include "version.hpp"
 
@@ -21,6 +22,14 @@ json limitsJson(const DaemonConfig& config) {
           {"deadline_ms", config.deadline.count()}};
 }
 
+json jobLimitsJson(const JobLimits& jobs) {
+  return {{"max_jobs", jobs.maxJobs},
+          {"memory_budget_bytes", jobs.memoryBytes},
+          {"ttl_seconds", jobs.ttl.count()},
+          {"max_batch", jobs.maxBatch},
+          {"deadline_ms", jobs.renderDeadline.count()}};
+}
+
 json buildJson() {
   return {{"version", kVersion},
           {"build_type", kBuildType},
@@ -37,13 +46,9 @@ json cacheJson(const RuntimeGauges& gauges) {
           {"budget_bytes", gauges.sceneCacheBudgetBytes}};
 }
 
-// What the Vulkan loader and drivers offer (null until the render thread has probed them). The
-// renderer has no Vulkan shadow-ray sidecar: say so plainly rather than omit the member.
+// What the Vulkan loader and drivers offer (null until the probe has answered).
 json vulkanJson(const std::optional<lgh::VulkanInfo>& vulkan) {
-  json result = vulkan ? vulkan->toJson() : json{{"available", nullptr}};
-  result["sidecar_path"] = nullptr;
-  result["note"] = "this build has no Vulkan shadow-ray sidecar; shadows are not traced";
-  return result;
+  return vulkan ? vulkan->toJson() : json{{"available", nullptr}};
 }
 
 json infoJson(const DaemonContext& context) {
@@ -56,13 +61,17 @@ json infoJson(const DaemonContext& context) {
           {"status", reason.empty() ? "ready" : reason},
           {"device", device ? device->toJson() : json()},
           {"vulkan", vulkanJson(context.queue.vulkan())},
+          {"shadows", context.queue.shadows().toJson()},
+          {"resources", context.queue.resources().toJson()},
           {"limits", limitsJson(context.config)},
           {"queue",
            {{"depth", gauges.queueDepth},
             {"capacity", gauges.queueCapacity},
             {"rendering", gauges.rendering}}},
           {"scene_cache", cacheJson(gauges)},
-          {"auth", !context.config.authToken.empty()}};
+          {"jobs", jobLimitsJson(context.config.jobs)},
+          {"auth", !context.config.authToken.empty()},
+          {"cors_origins", context.config.corsOrigins}};
 }
 
 }  // namespace
@@ -80,7 +89,8 @@ void addScrapeRoutes(httplib::Server& server, DaemonContext& context) {
     }
   });
   server.Get("/metrics", [&context](const httplib::Request&, httplib::Response& response) {
-    response.set_content(context.metrics.exposition(context.queue.gauges()),
+    response.set_content(context.metrics.exposition(context.queue.gauges()) +
+                             context.jobs.exposition() + processMetricsExposition(),
                          "text/plain; version=0.0.4; charset=utf-8");
   });
 }

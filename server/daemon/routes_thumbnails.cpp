@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "clock.hpp"
+#include "http_conventions.hpp"
 #include "http_util.hpp"
 #include "lgh/base64.hpp"
 #include "logging.hpp"
@@ -178,6 +179,8 @@ void thumbnails(DaemonContext& context, const httplib::Request& http, httplib::R
   const Clock::time_point deadline = deadlineFor(http, context.config);
   ThumbnailBatch batch = parseBatch(context, http);
   const ThumbnailBatch::Format format = batch.format;
+  chooseMediaType(
+      http, {format == ThumbnailBatch::Format::Zip ? "application/zip" : "application/x-ndjson"});
   auto run = std::make_shared<BatchRun>(context, std::move(batch), requestIdOf(response));
   run->submit(deadline);
   logging::event(spdlog::level::debug, "thumbnails_queued",

@@ -2,13 +2,13 @@
 
 #include <sys/socket.h>
 
-#include <array>
 #include <cmath>
 #include <optional>
 
 #include <fmt/format.h>
 
 #include "clock.hpp"
+#include "http_conventions.hpp"
 #include "http_util.hpp"
 #include "logging.hpp"
 #include "routes.hpp"
@@ -21,17 +21,12 @@ namespace {
 // clock is the request's clock.
 thread_local std::optional<Clock::time_point> requestStart;
 
-const std::array<const char*, 7> kRoutes = {
-    "/v1/render", "/v1/thumbnails", "/v1/info", "/healthz", "/readyz", "/metrics", "/openapi.json"};
-
-// A bounded label for metrics: the route, not the raw path.
+// A bounded label for metrics: the route's template (/v1/jobs/{id}), not the raw path.
 std::string routeLabel(const std::string& path) {
-  for (const char* route : kRoutes) {
-    if (path == route) return route;
-  }
-  if (path.ends_with("openapi.json")) return "/openapi.json";
-  if (path.ends_with(".schema.json")) return "/proto";
-  return "other";
+  const RouteSpec* route = matchRoute(path);
+  if (route == nullptr) return "other";
+  if (route->path.ends_with("{schema}")) return "/proto";
+  return std::string(route->path);
 }
 
 bool isProbe(const std::string& path) { return path == "/healthz" || path == "/readyz"; }
@@ -79,7 +74,12 @@ httplib::Server::HandlerResponse preRouting(const DaemonContext& context,
   requestStart = Clock::now();
   response.set_header(kRequestIdHeader,
                       logging::requestIdFrom(request.get_header_value(kRequestIdHeader)));
-  if (refusedChunkedBody(request, response) || refusedUnauthorized(context, request, response)) {
+  // CORS preflights carry no credentials: they are answered before authentication.
+  if (answeredCorsOrOptions(context.config.corsOrigins, request, response)) {
+    return httplib::Server::HandlerResponse::Handled;
+  }
+  if (refusedChunkedBody(request, response) || refusedUnauthorized(context, request, response) ||
+      refusedMethodOrMediaType(request, response)) {
     return httplib::Server::HandlerResponse::Handled;
   }
   return httplib::Server::HandlerResponse::Unhandled;
@@ -179,6 +179,7 @@ void configureServer(httplib::Server& server, DaemonContext& context) {
   });
   addRenderRoutes(server, context);
   addThumbnailRoutes(server, context);
+  addJobRoutes(server, context);
   addStatusRoutes(server, context);
   addDocumentRoutes(server);
 }

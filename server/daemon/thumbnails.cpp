@@ -10,11 +10,6 @@ namespace {
 
 using json = nlohmann::json;
 
-const std::set<std::string> kKnownMembers = {
-    "assets",        "width",    "height",         "view_direction",
-    "views",         "margin",   "format",         "transparent_background",
-    "name_template", "settings", "png_compression"};
-
 struct View {
   std::string name;
   json direction;
@@ -27,10 +22,15 @@ struct Options {
   std::vector<View> views;
 };
 
-void checkMembers(const json& body) {
+// proto/thumbnails-request.schema.json is the contract: members, types, ranges and defaults. The
+// checks below it are what a schema cannot say (unique view names, placeholders, views or
+// view_direction), and the render request each view becomes is validated as POST /v1/render's.
+void checkSchema(const json& body) {
   if (!body.is_object()) throw badRequest("the thumbnail request must be a JSON object", "/");
-  for (const auto& [key, value] : body.items()) {
-    if (!kKnownMembers.contains(key)) throw badRequest("unknown property", "/" + key);
+  try {
+    lgh::validateAgainstProtoSchema(body, "thumbnails-request.schema.json");
+  } catch (const lgh::Error& error) {
+    throw fromLghError(error);
   }
 }
 
@@ -83,7 +83,7 @@ std::vector<View> readViews(const json& body) {
 }
 
 Options readOptions(const json& body) {
-  checkMembers(body);
+  checkSchema(body);
   Options options;
   const json format = body.value("format", json("zip"));
   if (format == "ndjson") {

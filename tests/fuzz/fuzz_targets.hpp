@@ -18,7 +18,8 @@ void renderRequest(const std::uint8_t* data, std::size_t size);
 // The glTF loader on a .gltf or .glb held in memory with side files: the input is the model
 // followed by side files, each introduced by a line "\n--lgh-fuzz-file:NAME\n" (see
 // splitSideFiles); loaded as an upload (loadGltfFromMemory: external buffers and images through
-// the sandboxed side-file callbacks, data URIs), and as an inline .glb when it is one.
+// the sandboxed side-file callbacks, data URIs), again at an animation's pose when the model has
+// animations, and as an inline .glb when it is one.
 void gltfLoader(const std::uint8_t* data, std::size_t size);
 
 // The daemon's HTTP front as far as it parses: the bytes as one HTTP request, framing checked

@@ -1,5 +1,6 @@
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "fuzz_targets.hpp"
@@ -47,6 +48,16 @@ void gltfLoader(const std::uint8_t* data, std::size_t size) {
   } catch (const Error&) {
   }
   const std::vector<std::uint8_t>& model = files.at("model.gltf");
+  // Animation sampling runs only for a request's scene.animation: pose assets that have any.
+  const std::string_view text(reinterpret_cast<const char*>(model.data()), model.size());
+  if (text.find("\"animations\"") != std::string_view::npos) {
+    SceneLoadOptions posed;
+    posed.animation = SceneAnimation{0, 0.75F};
+    try {
+      (void)loadGltfFromMemory("model.gltf", files, fuzzLimits(), posed);
+    } catch (const Error&) {
+    }
+  }
   if (model.size() >= 4 &&
       std::string_view(reinterpret_cast<const char*>(model.data()), 4) == "glTF") {
     try {

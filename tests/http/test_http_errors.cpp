@@ -207,7 +207,10 @@ TEST_F(ErrorsTest, UploadShapeErrorsAre400) {
 
 TEST_F(ErrorsTest, UnknownRouteIs404Json) {
   expectError(http->Get("/v2/nothing"), 404, "not_found");
-  expectError(http->Get("/v1/render"), 404, "not_found");
+  // A known route with another method is 405 (test_http_conventions.cpp).
+  const auto wrongMethod = http->Get("/v1/render");
+  expectError(wrongMethod, 405, "method_not_allowed");
+  EXPECT_EQ(wrongMethod->get_header_value("Allow"), "POST, OPTIONS");
 }
 
 TEST_F(ErrorsTest, MalformedDeadlineHeaderIs400) {

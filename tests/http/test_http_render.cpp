@@ -190,7 +190,12 @@ TEST_F(RenderTest, InfoHealthAndReady) {
   ASSERT_FALSE(vulkan.at("devices").empty()) << vulkan.dump();
   EXPECT_FALSE(vulkan["devices"][0].at("name").get<std::string>().empty());
   EXPECT_TRUE(vulkan["devices"][0].at("ray_query").is_boolean());
-  EXPECT_TRUE(vulkan.at("sidecar_path").is_null());
+  // The shadow tracer of the GL device: made by the start-up self-test render (shadows "auto").
+  const json shadows = body.at("shadows");
+  EXPECT_EQ(shadows.at("status"), "ready") << shadows.dump();
+  EXPECT_EQ(shadows.at("process"), "in-process");
+  EXPECT_FALSE(shadows.at("device").get<std::string>().empty());
+  EXPECT_EQ(shadows.at("transport"), "staging") << "llvmpipe cannot use lavapipe's memory";
   EXPECT_TRUE(body["build"].contains("version"));
   EXPECT_EQ(http->Get("/healthz")->status, 200);
   EXPECT_EQ(http->Get("/readyz")->status, 200);

@@ -5,6 +5,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -144,6 +145,117 @@ TEST(LghRender, UsageErrorsAreRefusedBeforeRendering) {
   const ToolRun help = runTool("lgh-render", "--help");
   EXPECT_EQ(help.exitCode, 0);
   EXPECT_NE(help.out.find("--png-compression"), std::string::npos) << help.out;
+}
+
+// --- The thumbnailer form: a model in, a PNG out
+// ---------------------------------------------------
+
+std::string boxGlb() {
+  return (assimpGltfDir() / "BoxTextured-glTF-Binary" / "BoxTextured.glb").string();
+}
+
+TEST(LghRenderThumbnail, AModelBecomesASquareThumbnailWithoutAnyJson) {
+  const fs::path png = outputFile("thumb_default.png");
+  const ToolRun run = runTool("lgh-render", boxGlb() + " -o " + png.string() + " -q");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto image = decodeFile(png);
+  EXPECT_EQ(image.width, 256);
+  EXPECT_EQ(image.height, 256);
+  // The model is in the middle of the frame, the background around it.
+  const auto at = [&](int x, int y) {
+    return image.pixels8[static_cast<std::size_t>((y * image.width + x) * image.channels)];
+  };
+  EXPECT_NE(at(128, 128), at(2, 2));
+}
+
+TEST(LghRenderThumbnail, SizeViewAndTransparency) {
+  const fs::path wide = outputFile("thumb_wide.png");
+  ASSERT_EQ(runTool("lgh-render", boxGlb() + " -o " + wide.string() + " --size 80x40 -q").exitCode,
+            0);
+  const auto wideImage = decodeFile(wide);
+  EXPECT_EQ(wideImage.width, 80);
+  EXPECT_EQ(wideImage.height, 40);
+
+  const fs::path clear = outputFile("thumb_transparent.png");
+  const ToolRun transparent =
+      runTool("lgh-render", boxGlb() + " -o " + clear.string() + " --size 64 --transparent -q");
+  ASSERT_EQ(transparent.exitCode, 0) << transparent.err;
+  const auto rgba = decodeFile(clear);
+  ASSERT_EQ(rgba.channels, 4);
+  EXPECT_EQ(rgba.pixels8[3], 0) << "the corner is background";
+  EXPECT_EQ(rgba.pixels8[(32 * 64 + 32) * 4 + 3], 255) << "the centre is the model";
+
+  // Each view looks from its own side: the images differ.
+  std::map<std::string, std::vector<std::uint8_t>> views;
+  for (const char* view : {"iso", "front", "top", "0.2,1,-1"}) {
+    const fs::path file = outputFile(std::string("thumb_view_") + view + ".png");
+    const ToolRun run =
+        runTool("lgh-render", boxGlb() + " -o " + file.string() + " --size 48 -q --view " + view);
+    ASSERT_EQ(run.exitCode, 0) << view << ": " << run.err;
+    views[view] = decodeFile(file).pixels8;
+  }
+  EXPECT_NE(views["iso"], views["front"]);
+  EXPECT_NE(views["front"], views["top"]);
+  EXPECT_NE(views["top"], views["0.2,1,-1"]);
+}
+
+TEST(LghRenderThumbnail, AGltfFindsItsSideFilesBesideIt) {
+  const fs::path png = outputFile("thumb_gltf.png");
+  const std::string gltf = (assimpGltfDir() / "BoxTextured-glTF" / "BoxTextured.gltf").string();
+  const ToolRun run = runTool("lgh-render", gltf + " -o " + png.string() + " --size 32 -q");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(decodeFile(png).width, 32);
+}
+
+TEST(LghRenderThumbnail, BadArgumentsAreRefusedWithTheirName) {
+  const std::string out = " -o " + outputFile("thumb_bad.png").string();
+  const ToolRun view = runTool("lgh-render", boxGlb() + out + " --view diagonal");
+  EXPECT_NE(view.exitCode, 0);
+  EXPECT_NE(view.err.find("--view"), std::string::npos) << view.err;
+  const ToolRun zero = runTool("lgh-render", boxGlb() + out + " --view 0,0,0");
+  EXPECT_NE(zero.exitCode, 0);
+  const ToolRun size = runTool("lgh-render", boxGlb() + out + " --size 0x10");
+  EXPECT_NE(size.exitCode, 0);
+  EXPECT_NE(size.err.find("--size"), std::string::npos) << size.err;
+  const ToolRun missing = runTool("lgh-render", "/nonexistent/model.glb" + out);
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_NE(missing.err.find("/nonexistent/model.glb"), std::string::npos) << missing.err;
+  const ToolRun viewOfRequest = runTool("lgh-render", "--demo" + out + " --view top");
+  EXPECT_EQ(viewOfRequest.exitCode, 2);
+  EXPECT_NE(viewOfRequest.err.find("--view"), std::string::npos) << viewOfRequest.err;
+  const ToolRun root = runTool("lgh-render", boxGlb() + out + " --asset-root /tmp");
+  EXPECT_EQ(root.exitCode, 2);
+}
+
+// server/lgh-render.thumbnailer as a desktop file manager runs it: %i the model, %o the PNG to
+// write, %s the size.
+TEST(LghRenderThumbnail, TheFreedesktopThumbnailerEntryWorksAsWritten) {
+  std::ifstream entry(fs::path(LGH_TEST_DATA_DIR) / ".." / "server" / "lgh-render.thumbnailer");
+  ASSERT_TRUE(entry);
+  std::map<std::string, std::string> keys;
+  for (std::string line; std::getline(entry, line);) {
+    const std::size_t equals = line.find('=');
+    if (equals != std::string::npos) keys[line.substr(0, equals)] = line.substr(equals + 1);
+  }
+  EXPECT_EQ(keys["TryExec"], "lgh-render");
+  EXPECT_NE(keys["MimeType"].find("model/gltf-binary;"), std::string::npos);
+  EXPECT_NE(keys["MimeType"].find("model/gltf+json;"), std::string::npos);
+  std::string command = keys["Exec"];
+  const fs::path png = outputFile("thumbnailer.png");
+  for (const auto& [code, value] :
+       std::map<std::string, std::string>{{"%i", boxGlb()}, {"%o", png.string()}, {"%s", "128"}}) {
+    const std::size_t at = command.find(code);
+    ASSERT_NE(at, std::string::npos) << code << " in " << keys["Exec"];
+    command.replace(at, code.size(), value);
+  }
+  const std::string shell = "PATH=" + (fs::path(LGH_BUILD_DIR) / "server").string() + ":$PATH " +
+                            command + " 2>" + outputFile("thumbnailer.stderr").string();
+  ASSERT_EQ(std::system(shell.c_str()), 0) << shell << "\n"
+                                           << slurp(outputDir() / "cli" / "thumbnailer.stderr");
+  const auto image = decodeFile(png);
+  EXPECT_EQ(image.width, 128);
+  EXPECT_EQ(image.height, 128);
+  EXPECT_EQ(image.channels, 4);
 }
 
 TEST(LghBench, ConstructPrintsJsonRowsForEachCount) {

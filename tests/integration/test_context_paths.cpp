@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <thread>
@@ -103,6 +104,51 @@ TEST(ContextPaths, EachContextOwnsItsFunctionTable) {
   std::thread([] { EXPECT_EQ(lgh::gl::currentApi(), nullptr); }).join();
   surfaceless.reset();
   EXPECT_EQ(lgh::gl::currentApi(), nullptr);
+}
+
+// Two renderers on one thread, on the same EGL display: each makes its own context current when
+// it renders or is destroyed, and destroying one leaves the display to the other.
+TEST(ContextPaths, RenderersShareAThreadAndADisplay) {
+  const auto request = lgh::parseRenderRequest(R"({"output": {"width": 24, "height": 16}})");
+  lgh::Renderer first(lgh::test::rendererOptions());
+  const lgh::FloatImage reference = first.render(request).image;
+  for (int round = 0; round < 3; ++round) {
+    auto second = std::make_unique<lgh::Renderer>(lgh::test::rendererOptions());
+    EXPECT_TRUE(second->render(request).image.rgba == reference.rgba);
+    EXPECT_TRUE(first.render(request).image.rgba == reference.rgba);
+    second.reset();  // while `first`'s context is the current one
+    EXPECT_TRUE(first.render(request).image.rgba == reference.rgba) << "round " << round;
+  }
+}
+
+// A GPU reset ends a renderer (the test hook reports one after two frames): that frame and every
+// later one fail with Unavailable, and a new renderer renders as before.
+TEST(ContextPaths, ALostContextEndsTheRendererAndANewOneRenders) {
+  const auto request = lgh::parseRenderRequest(R"({"output": {"width": 24, "height": 16}})");
+  lgh::FloatImage reference;
+  {
+    lgh::Renderer clean(lgh::test::rendererOptions());
+    reference = clean.render(request).image;
+  }
+  setenv("LGH_DEBUG_CONTEXT_LOSS_AFTER", "2", 1);
+  {
+    lgh::Renderer renderer(lgh::test::rendererOptions());
+    unsetenv("LGH_DEBUG_CONTEXT_LOSS_AFTER");
+    EXPECT_TRUE(renderer.render(request).image.rgba == reference.rgba);
+    EXPECT_TRUE(renderer.render(request).image.rgba == reference.rgba);
+    EXPECT_TRUE(renderer.healthy());
+    for (int i = 0; i < 2; ++i) {
+      try {
+        renderer.render(request);
+        FAIL() << "a lost context rendered";
+      } catch (const lgh::Error& error) {
+        EXPECT_EQ(error.code(), lgh::ErrorCode::Unavailable) << error.what();
+      }
+      EXPECT_FALSE(renderer.healthy());
+    }
+  }
+  lgh::Renderer again(lgh::test::rendererOptions());
+  EXPECT_TRUE(again.render(request).image.rgba == reference.rgba);
 }
 
 TEST(ContextPathsDeathTest, GlCallWithoutContextNamesTheCall) {

@@ -546,7 +546,12 @@ TEST_F(LghBuild, AutoS1BinsLargeInputs) {
 
 TEST_F(LghBuild, BlendGlslMatchesCpp) {
   const auto& sources = lgh::embedded::glslSources();
-  const std::string source = "#version 450\n" + sources.at("include/lgh_types.glsl") +
+  // The raw texts, without the shader library: lgh_types.glsl's one include is pasted in front.
+  std::string types = sources.at("include/lgh_types.glsl");
+  const std::string include = "#include \"include/slots.glsl\"";
+  ASSERT_NE(types.find(include), std::string::npos);
+  types.erase(types.find(include), include.size());
+  const std::string source = "#version 450\n" + sources.at("include/slots.glsl") + types +
                              sources.at("include/lgh_blend.glsl") + R"(
 layout(local_size_x = 64) in;
 struct Query { float d; int level; int start; int top; float alpha; float h1; float pad0; float pad1; };

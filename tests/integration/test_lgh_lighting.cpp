@@ -152,8 +152,8 @@ TEST_F(LghLighting, RasterAndComputeAgree) {
     EXPECT_EQ(compute.result.decisions.at("lgh_lighting"), "compute");
     // llvmpipe shades the fragments of a pixel in primitive order: even unlocked, the raster
     // reservoir sees the lights in the compute path's order. A GPU shades fragments of one pixel
-    // concurrently: unlocked, reservoir updates race and get lost (the paper's trade-off; on the
-    // H100 at this tiny size F came out 16-28% low), so there only the images must agree.
+    // concurrently: unlocked, reservoir updates race and get lost (the paper's trade-off, strong
+    // at this tiny size; docs/LIGHTING.md), so there only the images must agree.
     const bool ordered = context->info().softwareRenderer;
     expectPathsAgree(raster, compute, interleave, ordered ? 0.99 : 0.0, ordered ? 1e-4 : 1.0);
     save(raster.probe.indirect, std::string("lgh_raster_") + interleave);

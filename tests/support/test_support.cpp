@@ -1,6 +1,10 @@
 #include "test_support.hpp"
 
+#include <algorithm>
 #include <cstdlib>
+#include <cstring>
+
+#include <fmt/format.h>
 
 namespace lgh::test {
 
@@ -13,6 +17,60 @@ std::filesystem::path outputDir() {
 }
 
 std::filesystem::path assimpGltfDir() { return "/usr/share/assimp/models/glTF2"; }
+
+std::vector<std::uint8_t> makeTriangleGlb(const std::vector<Position>& positions,
+                                          const std::vector<std::uint32_t>& indices) {
+  Position lo{1e30F, 1e30F, 1e30F};
+  Position hi{-1e30F, -1e30F, -1e30F};
+  for (const Position& p : positions) {
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], p[i]);
+      hi[i] = std::max(hi[i], p[i]);
+    }
+  }
+  const std::size_t positionBytes = positions.size() * sizeof(Position);
+  const std::size_t indexBytes = indices.size() * sizeof(std::uint32_t);
+  std::vector<std::uint8_t> bin(positionBytes + indexBytes);
+  std::memcpy(bin.data(), positions.data(), positionBytes);
+  std::memcpy(bin.data() + positionBytes, indices.data(), indexBytes);
+  const std::string json = fmt::format(
+      R"({{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],)"
+      R"("meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1}}]}}],)"
+      R"("buffers":[{{"byteLength":{}}}],)"
+      R"("bufferViews":[{{"buffer":0,"byteLength":{}}},{{"buffer":0,"byteOffset":{},"byteLength":{}}}],)"
+      R"("accessors":[{{"bufferView":0,"componentType":5126,"count":{},"type":"VEC3",)"
+      R"("min":[{},{},{}],"max":[{},{},{}]}},)"
+      R"({{"bufferView":1,"componentType":5125,"count":{},"type":"SCALAR"}}]}})",
+      bin.size(), positionBytes, positionBytes, indexBytes, positions.size(), lo[0], lo[1], lo[2],
+      hi[0], hi[1], hi[2], indices.size());
+  auto padded = [](std::size_t n) { return (n + 3) / 4 * 4; };
+  std::string jsonChunk = json;
+  jsonChunk.resize(padded(json.size()), ' ');
+  bin.resize(padded(bin.size()), 0);
+  std::vector<std::uint8_t> glb;
+  auto put32 = [&glb](std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) glb.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+  };
+  put32(0x46546C67U);  // "glTF"
+  put32(2);
+  put32(static_cast<std::uint32_t>(12 + 8 + jsonChunk.size() + 8 + bin.size()));
+  put32(static_cast<std::uint32_t>(jsonChunk.size()));
+  put32(0x4E4F534AU);  // "JSON"
+  glb.insert(glb.end(), jsonChunk.begin(), jsonChunk.end());
+  put32(static_cast<std::uint32_t>(bin.size()));
+  put32(0x004E4942U);  // "BIN\0"
+  glb.insert(glb.end(), bin.begin(), bin.end());
+  return glb;
+}
+
+void addSquare(std::vector<Position>& positions, std::vector<std::uint32_t>& indices, float y,
+               float halfSize) {
+  const auto base = static_cast<std::uint32_t>(positions.size());
+  const float h = halfSize;
+  // Counter-clockwise seen from above (+y).
+  positions.insert(positions.end(), {{-h, y, h}, {h, y, h}, {h, y, -h}, {-h, y, -h}});
+  for (std::uint32_t i : {0U, 1U, 2U, 0U, 2U, 3U}) indices.push_back(base + i);
+}
 
 RendererOptions rendererOptions() {
   RendererOptions options;

@@ -3,8 +3,11 @@
 // failure.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "lgh/image.hpp"
 #include "lgh/renderer_options.hpp"
@@ -22,6 +25,15 @@ std::filesystem::path assimpGltfDir();
 // as it does for lghd, lgh-render and lgh-bench, so the whole suite runs on any path
 // (scripts/run-tests runs it again with LGH_BACKEND=osmesa).
 RendererOptions rendererOptions();
+
+// A binary glTF (GLB) of one mesh of triangles, no normals (the loader computes flat ones), one
+// node, the default material: for scenes built in a test.
+using Position = std::array<float, 3>;
+std::vector<std::uint8_t> makeTriangleGlb(const std::vector<Position>& positions,
+                                          const std::vector<std::uint32_t>& indices);
+// Two triangles of an axis-aligned square at height y, facing up, appended to a mesh.
+void addSquare(std::vector<Position>& positions, std::vector<std::uint32_t>& indices, float y,
+               float halfSize);
 
 }  // namespace lgh::test
 

@@ -1,6 +1,6 @@
 // The LGH blending functions (renderer/testing: lgh/testing/lgh_blend.hpp, mirror of
 // glsl/include/lgh_blend.glsl): a partition of unity over the levels in use at every distance,
-// for many alpha, h_1, start and top levels; the shapes of DESIGN.md ("LGH facts") and the
+// for many alpha, h_1, start and top levels; the shapes of docs/LGH.md and the
 // paper's Fig. 2. Tolerance: 1e-5 on sums of float weights.
 #include <gtest/gtest.h>
 

@@ -192,6 +192,22 @@ const BadCase kBadCases[] = {
     {"vec3_too_short", R"({"camera": {"type": "look_at", "target": [0, 1]}})", kBad,
      "/camera/target"},
     {"scene_string", R"({"scene": "demo"})", kBad, "/scene"},
+    {"scene_animation_only", R"({"scene": {"animation": {"index": 0}}})", kBad, "/scene"},
+    {"animation_index_missing", R"({"scene": {"asset": "a.glb", "animation": {"time": 1}}})", kBad,
+     "/scene/animation/index"},
+    {"animation_time_negative",
+     R"({"scene": {"asset": "a.glb", "animation": {"index": 0, "time": -1}}})", kInvalid,
+     "/scene/animation/time"},
+    {"material_variant_empty", R"({"scene": {"asset": "a.glb", "material_variant": ""}})", kBad,
+     "/scene/material_variant"},
+    {"point_size_zero", R"({"settings": {"primitives": {"point_size": 0}}})", kInvalid,
+     "/settings/primitives/point_size"},
+    {"point_shape_unknown", R"({"settings": {"primitives": {"point_shape": "star"}}})", kBad,
+     "/settings/primitives/point_shape"},
+    {"line_width_too_wide", R"({"settings": {"primitives": {"line_width": 100}}})", kInvalid,
+     "/settings/primitives/line_width"},
+    {"ignore_extensions_string", R"({"settings": {"ignore_unsupported_extensions": "yes"}})", kBad,
+     "/settings/ignore_unsupported_extensions"},
     {"width_float_out_of_range", R"({"output": {"width": -1e19}})", kBad, "/output/width"},
     // Unknown property.
     {"unknown_top_level", R"({"foo": 1})", kBad, "/foo"},
@@ -326,7 +342,8 @@ TEST(RequestErrors, UnknownPropertyListsTheAllowedOnes) {
 
 TEST(RequestErrors, SceneWithTwoKeysSaysWhichAreAllowed) {
   const Error error = parseError(std::string(R"({"scene": {"demo": true, "asset": "a.glb"}})"));
-  EXPECT_EQ(error.message(), "must have exactly one property (asset, demo or glb_base64), got 2");
+  EXPECT_EQ(error.message(),
+            "must have exactly one of the properties asset, demo or glb_base64, got 2");
 }
 
 TEST(RequestErrors, NonFiniteNumbersInJsonBuiltInCode) {
@@ -428,6 +445,29 @@ TEST(RequestLimitsTest, DefaultLimitsAllowTheSchemaMaximum) {
 }
 
 // --- Accepted requests ------------------------------------------------------------------------
+
+TEST(RequestParse, SceneOptionsAndPrimitiveSettings) {
+  const RenderRequest request = parseText(R"({
+    "scene": {"asset": "simple_skin/simple_skin.gltf", "animation": {"index": 1, "time": 2.5},
+              "material_variant": "red"},
+    "settings": {"ignore_unsupported_extensions": true,
+                 "primitives": {"point_size": 8, "point_shape": "square", "line_width": 3}}})");
+  EXPECT_EQ(request.scene.kind, SceneSource::Kind::AssetPath);
+  ASSERT_TRUE(request.sceneOptions.animation.has_value());
+  EXPECT_EQ(request.sceneOptions.animation->index, 1);
+  EXPECT_FLOAT_EQ(request.sceneOptions.animation->time, 2.5F);
+  EXPECT_EQ(request.sceneOptions.materialVariant, "red");
+  EXPECT_TRUE(request.settings.ignoreUnsupportedExtensions);
+  EXPECT_FLOAT_EQ(request.settings.primitives.pointSize, 8.0F);
+  EXPECT_EQ(request.settings.primitives.pointShape, lgh::PointShape::Square);
+  EXPECT_FLOAT_EQ(request.settings.primitives.lineWidth, 3.0F);
+  // Without them: the bind pose, the default variant, refusal of unknown required extensions.
+  const RenderRequest plain = parseText(R"({"scene": {"asset": "a.glb"}})");
+  EXPECT_FALSE(plain.sceneOptions.animation.has_value());
+  EXPECT_TRUE(plain.sceneOptions.materialVariant.empty());
+  EXPECT_FALSE(plain.settings.ignoreUnsupportedExtensions);
+  EXPECT_EQ(plain.settings.primitives.pointShape, lgh::PointShape::Disk);
+}
 
 TEST(RequestParse, EmptyObjectIsAllDefaults) {
   EXPECT_EQ(describe(parseText("{}")), describe(RenderRequest{}));
@@ -556,9 +596,9 @@ TEST(RequestParse, ZeroPlanesAreDerivedNotContradictory) {
 // Every "default" the schema states, sent explicitly, must parse to the struct's default.
 TEST(RequestParse, SchemaDefaultsMatchStructDefaults) {
   const json bundle = bundleSchema("render-request.schema.json");
-  const auto& definitions = bundle.at("definitions");
-  const json& lgh = definitions.at("render-settings.schema.json").at("definitions").at("lgh");
-  const json& camera = definitions.at("camera.schema.json").at("definitions");
+  const auto& definitions = bundle.at("$defs");
+  const json& lgh = definitions.at("render-settings.schema.json").at("$defs").at("lgh");
+  const json& camera = definitions.at("camera.schema.json").at("$defs");
 
   auto expectDefaults = [](const json& properties, const std::function<json(json)>& wrap,
                            const RenderRequest& expected) {
@@ -572,7 +612,7 @@ TEST(RequestParse, SchemaDefaultsMatchStructDefaults) {
   expectDefaults(
       bundle.at("properties"), [](json o) { return o; }, defaults);
   expectDefaults(
-      definitions.at("output").at("properties"),
+      bundle.at("$defs").at("output").at("properties"),
       [](json o) {
         return json{{"output", o}};
       },
@@ -634,9 +674,12 @@ TEST(ErrorCodes, Names) {
 
 TEST(ProtoDocuments, AllShippedAndReachable) {
   const std::vector<std::string> expected{
-      "camera.schema.json",          "light.schema.json",           "render-request.schema.json",
-      "render-response.schema.json", "render-settings.schema.json", "scene.schema.json",
-      "timings.schema.json"};
+      "camera.schema.json",          "light.schema.json",
+      "render-request.schema.json",  "render-response.schema.json",
+      "render-settings.schema.json", "scene.schema.json",
+      "timings.schema.json",         "thumbnails-request.schema.json",
+      "job-request.schema.json",     "job-status.schema.json",
+      "benchmark-result.schema.json"};
   const std::vector<std::string> shipped = schemaFileNames();
   for (const std::string& name : expected) {
     EXPECT_FALSE(protoDocument(name).empty()) << name;
@@ -746,7 +789,46 @@ constexpr const char* kDraft07MetaSchema = R"json({
     "default": true
 })json";
 
-TEST(ProtoDocuments, EachIsJsonAndAValidDraft07Schema) {
+// Keywords of draft 7 that 2020-12 renamed or reshaped: none may appear in a proto schema.
+constexpr const char* kDraft07OnlyKeywords[] = {"definitions", "dependencies", "additionalItems"};
+// What may stand beside a "$ref": annotations only. 2020-12 applies a $ref's siblings, valijson
+// (draft 7) ignores them; with annotations only, both validate alike.
+constexpr const char* kRefAnnotations[] = {"$ref",  "description", "default",
+                                           "title", "examples",    "$comment"};
+
+void expectFormsBothRead(const json& node, const std::string& path) {
+  if (node.is_array()) {
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      expectFormsBothRead(node[i], path + "/" + std::to_string(i));
+    }
+    return;
+  }
+  if (!node.is_object()) return;
+  for (const char* keyword : kDraft07OnlyKeywords) {
+    EXPECT_FALSE(node.contains(keyword)) << path << " uses the draft-07 keyword " << keyword;
+  }
+  if (node.contains("items")) {
+    EXPECT_TRUE(node["items"].is_object())
+        << path << ": array-form items is prefixItems in 2020-12";
+  }
+  if (node.contains("$ref")) {
+    for (const auto& [key, value] : node.items()) {
+      EXPECT_NE(std::find(std::begin(kRefAnnotations), std::end(kRefAnnotations), key),
+                std::end(kRefAnnotations))
+          << path << ": \"" << key << "\" beside $ref is applied by 2020-12, ignored by valijson";
+    }
+  }
+  for (const auto& [key, value] : node.items()) {
+    if (key != "examples" && key != "default" && key != "enum" && key != "const") {
+      expectFormsBothRead(value, std::string(path).append("/").append(key));
+    }
+  }
+}
+
+// The files are JSON Schema 2020-12 (the dialect of OpenAPI 3.1) written in forms valijson, a
+// draft-07 validator, reads the same way: so the draft-07 meta-schema accepts them too, and they
+// compile. tests/contract validates them against the 2020-12 meta-schema itself (ajv).
+TEST(ProtoDocuments, EachIsA2020_12SchemaInFormsValijsonReads) {
   const json metaDocument = json::parse(kDraft07MetaSchema);
   valijson::Schema metaSchema;
   compileSchema(metaDocument, metaSchema);
@@ -754,8 +836,11 @@ TEST(ProtoDocuments, EachIsJsonAndAValidDraft07Schema) {
     SCOPED_TRACE(name);
     json document;
     ASSERT_NO_THROW(document = json::parse(protoDocument(name)));
-    EXPECT_EQ(document.value("$schema", ""), "http://json-schema.org/draft-07/schema#");
-    EXPECT_TRUE(document.value("$id", "").ends_with("/" + name));
+    EXPECT_EQ(document.value("$schema", ""), "https://json-schema.org/draft/2020-12/schema");
+    // No $id: relative $refs ("scene.schema.json") resolve against where the file is, proto/ or
+    // the daemon's /proto/, as the OpenAPI document's do.
+    EXPECT_FALSE(document.contains("$id"));
+    expectFormsBothRead(document, name);
     EXPECT_EQ(validationErrors(metaSchema, document), std::vector<std::string>{});
 
     // Compiles with valijson, its cross-file references resolved from the embedded files.
@@ -770,10 +855,12 @@ TEST(ProtoDocuments, EachIsJsonAndAValidDraft07Schema) {
 void expectDocumented(const json& schema, const std::string& path) {
   if (!schema.is_object()) return;
   if (schema.value("type", json()) == "object") {
-    EXPECT_TRUE(schema.contains("additionalProperties") || schema.contains("allOf"))
+    // A discriminated oneOf closes the object in each of its branches.
+    EXPECT_TRUE(schema.contains("additionalProperties") || schema.contains("allOf") ||
+                schema.contains("oneOf"))
         << path << " is an object schema without additionalProperties";
   }
-  for (const char* key : {"properties", "definitions"}) {
+  for (const char* key : {"properties", "$defs"}) {
     if (!schema.contains(key)) continue;
     for (const auto& [name, child] : schema[key].items()) {
       if (std::string(key) == "properties") {
@@ -903,6 +990,83 @@ TEST(EnumNames, RoundTripAndAliases) {
   EXPECT_EQ(enumName(ImageFormat::ExrHalf), "exr");  // the first name is the canonical one
   EXPECT_FALSE(enumFromName<ToneMap>("filmic").has_value());
   EXPECT_EQ(enumNameList<ToneMap>(), "none, reinhard, aces");
+}
+
+}  // namespace
+}  // namespace lgh
+
+// --- Discriminated oneOf, and the other request schemas
+// -------------------------------------------
+
+namespace lgh {
+namespace {
+
+// valijson knows no discriminator: the bundle lowers the camera's oneOf to one if/then per type,
+// so that an error is the selected camera's (see schema_bundle.hpp). The file keeps the oneOf.
+TEST(SchemaBundle, LowersADiscriminatedOneOfToIfThen) {
+  const json document = json::parse(protoDocument("camera.schema.json"));
+  EXPECT_EQ(document.at("discriminator").at("propertyName"), "type");
+  EXPECT_EQ(document.at("oneOf").size(), 3U);
+
+  const json bundle = bundleSchema("camera.schema.json");
+  EXPECT_FALSE(bundle.contains("oneOf"));
+  EXPECT_FALSE(bundle.contains("discriminator"));
+  ASSERT_EQ(bundle.at("allOf").size(), 3U);
+  for (const json& branch : bundle.at("allOf")) {
+    const std::string type = branch.at("if").at("properties").at("type").at("const");
+    EXPECT_EQ(branch.at("then").at("$ref"), "#/$defs/" + type);
+    EXPECT_EQ(document.at("discriminator").at("mapping").at(type), "#/$defs/" + type);
+  }
+}
+
+Error schemaError(const json& value, const std::string& file) {
+  try {
+    validateAgainstProtoSchema(value, file);
+  } catch (const Error& error) {
+    return error;
+  }
+  ADD_FAILURE() << file << " accepted " << value.dump();
+  return Error(ErrorCode::Internal, "no error");
+}
+
+TEST(ProtoSchemas, ThumbnailsRequestNamesTheField) {
+  const std::string file = "thumbnails-request.schema.json";
+  EXPECT_NO_THROW(validateAgainstProtoSchema(json::object(), file));
+  EXPECT_NO_THROW(validateAgainstProtoSchema(
+      {{"assets", {"a.glb"}}, {"views", {{{"name", "front"}, {"direction", {0, 0, 1}}}}}}, file));
+
+  Error unknown = schemaError({{"colour", "red"}}, file);
+  EXPECT_EQ(unknown.field(), "/colour");
+  EXPECT_NE(std::string(unknown.message()).find("allowed here: assets"), std::string::npos)
+      << unknown.message();
+  EXPECT_EQ(schemaError({{"width", 0}}, file).code(), ErrorCode::Invalid);
+  EXPECT_EQ(schemaError({{"format", "tar"}}, file).field(), "/format");
+  const Error badName =
+      schemaError({{"views", {{{"name", "a b"}, {"direction", {0, 0, 1}}}}}}, file);
+  EXPECT_EQ(badName.field(), "/views/0/name");
+  EXPECT_NE(std::string(badName.message()).find("must match"), std::string::npos)
+      << badName.message();
+  EXPECT_EQ(schemaError({{"views", {{{"name", "a"}}}}}, file).field(), "/views/0/direction");
+}
+
+TEST(ProtoSchemas, JobRequestSelectsTheKindsSchema) {
+  const std::string file = "job-request.schema.json";
+  EXPECT_NO_THROW(validateAgainstProtoSchema({{"kind", "render"}}, file));
+  EXPECT_NO_THROW(validateAgainstProtoSchema(
+      {{"kind", "thumbnails"}, {"request", {{"assets", {"a.glb"}}}}}, file));
+  EXPECT_NO_THROW(validateAgainstProtoSchema({{"kind", "benchmark"}, {"iterations", 3}}, file));
+
+  EXPECT_EQ(schemaError({{"kind", "bake"}}, file).field(), "/kind");
+  EXPECT_EQ(schemaError(json::object(), file).field(), "/kind");
+  EXPECT_EQ(schemaError({{"kind", "thumbnails"}}, file).field(), "/request");
+  // Only the selected kind's members are allowed, and errors reach into its request.
+  EXPECT_EQ(schemaError({{"kind", "render"}, {"iterations", 3}}, file).field(), "/iterations");
+  const Error width =
+      schemaError({{"kind", "render"}, {"request", {{"output", {{"width", 0}}}}}}, file);
+  EXPECT_EQ(width.field(), "/request/output/width");
+  EXPECT_EQ(width.code(), ErrorCode::Invalid);
+  EXPECT_EQ(schemaError({{"kind", "thumbnails"}, {"request", {{"width", "big"}}}}, file).field(),
+            "/request/width");
 }
 
 }  // namespace

@@ -50,6 +50,21 @@ TEST(TimingTable, GpuTotalSumsOnlyGpuRows) {
   EXPECT_DOUBLE_EQ(TimingTable{}.gpuTotal(), 0.0);
 }
 
+// Steps inside a pass (the LGH build's) are inside its time: the GPU total counts the pass only.
+TEST(TimingTable, NestedStepsAreNotCountedTwice) {
+  TimingTable table = sampleTable();
+  table.add("lgh build", TimingRow::Clock::Gpu, 3.0);
+  table.add("lgh bounds", TimingRow::Clock::Gpu, 1.0, 1);
+  table.add("lgh S1", TimingRow::Clock::Gpu, 1.5, 1);
+  EXPECT_DOUBLE_EQ(table.gpuTotal(), 5.0);
+  const nlohmann::json json = table.toJson();
+  EXPECT_FALSE(json[3].contains("depth"));
+  EXPECT_EQ(json[4].at("depth"), 1);
+  const std::vector<std::string> rows = lines(table.format());
+  EXPECT_TRUE(rows[5].starts_with("  lgh bounds")) << rows[5];
+  EXPECT_NE(rows.back().find("5.000"), std::string::npos) << rows.back();
+}
+
 TEST(TimingTable, FormatIsAlignedWithTotalRow) {
   const std::vector<std::string> rows = lines(sampleTable().format());
   ASSERT_EQ(rows.size(), 5U);  // header, three rows, total

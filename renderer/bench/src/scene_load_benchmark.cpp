@@ -61,7 +61,7 @@ SceneLoadBenchmarkResult runSceneLoadBenchmark(const SceneLoadBenchmarkConfig& c
     source.kind = SceneSource::Kind::AssetPath;
     source.assetPath = asset.filename().string();
     source.displayName = source.assetPath;
-    const worker::LoadJob job{source, asset.parent_path(), SceneLoadLimits{}};
+    const worker::LoadJob job{source, asset.parent_path(), SceneLoadLimits{}, SceneLoadOptions{}};
     SceneLoadRow row;
     row.asset = source.assetPath;
     std::vector<double> inProcess;

@@ -10,7 +10,9 @@
 #include "lgh/render_result.hpp"
 #include "lgh/renderer_options.hpp"
 #include "lgh/request.hpp"
+#include "lgh/resource_stats.hpp"
 #include "lgh/scene_cache_stats.hpp"
+#include "lgh/shadow_info.hpp"
 
 namespace lgh {
 
@@ -24,12 +26,26 @@ class Renderer {
 
   // Throws lgh::Error: NotFound/Invalid/TooLarge for bad scenes, Internal for GL failures.
   RenderResult render(const RenderRequest& request);
+  // The same frame without its encoding (`encoded` stays empty, no "encode" row): for callers
+  // that encode elsewhere (RenderResult::encode is safe on any thread) or not at all.
+  RenderResult renderFrame(const RenderRequest& request);
 
   const DeviceInfo& device() const;
   const RendererOptions& options() const;
 
   using CacheStats = SceneCacheStats;
   CacheStats sceneCacheStats() const;
+
+  // The shadow side: its Vulkan device and paths, or why there is none.
+  ShadowInfo shadowInfo() const;
+
+  // Live GL objects and GPU memory (queries the GL context: call it on the render thread).
+  ResourceStats resourceStats() const;
+
+  // False once the GL context was lost (a GPU reset reported through GL_KHR_robustness): every
+  // later render fails with Unavailable; make a new Renderer. The environment variable
+  // LGH_DEBUG_CONTEXT_LOSS_AFTER=N (a test hook) reports a loss after N frames.
+  bool healthy() const;
 
   struct Impl;
 

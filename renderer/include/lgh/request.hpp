@@ -59,6 +59,19 @@ struct SceneSource {
   std::string displayName;  // for logs and thumbnail names
 };
 
+// scene.animation: the pose a skinned or morphed asset is drawn in.
+struct SceneAnimation {
+  int index = 0;      // glTF animation index
+  float time = 0.0F;  // seconds, clamped to the animation's range
+};
+
+// What the request chooses about the scene beside its source (scene.animation,
+// scene.material_variant). Kept apart from SceneSource, which the daemon replaces with uploads.
+struct SceneOptions {
+  std::optional<SceneAnimation> animation;  // none: the bind pose
+  std::string materialVariant;              // KHR_materials_variants name; "": the default
+};
+
 struct CameraDesc {
   // Default (no camera in the request): the asset's first camera if it has one, else Auto.
   enum class Kind { Default, LookAt, GltfCamera, Auto };
@@ -195,14 +208,34 @@ struct ShadowSettings {
   int filterIterations = 4;  // a-trous passes over the LGH shadow ratio (0: unfiltered)
 };
 
+enum class PointShape { Square, Disk };
+template <>
+struct EnumNames<PointShape> {
+  static constexpr std::array<EnumName<PointShape>, 2> names{{
+      {"square", PointShape::Square},
+      {"disk", PointShape::Disk},
+  }};
+};
+
+// How glTF POINTS and LINES primitives are drawn (settings.primitives).
+struct PrimitiveSettings {
+  float pointSize = 4.0F;  // pixels across
+  PointShape pointShape = PointShape::Disk;
+  float lineWidth = 1.5F;  // pixels
+};
+
 struct RenderSettings {
   float ambient = 0.03F;  // constant ambient term (linear RGB intensity, grey)
+  // Render assets whose required glTF extensions this renderer lacks, with a warning (else 422).
+  bool ignoreUnsupportedExtensions = false;
+  PrimitiveSettings primitives;
   ShadowSettings shadows;
   LghSettings lgh;
 };
 
 struct RenderRequest {
   SceneSource scene;
+  SceneOptions sceneOptions;
   std::vector<LightDesc> lights;      // extra lights beside the asset's
   bool useDemoLightsWhenNone = true;  // an asset with no light gets a default key light
   CameraDesc camera;
@@ -239,5 +272,9 @@ inline RenderRequest parseRenderRequest(const char* text, const RequestLimits& l
 
 // The schema documents shipped in proto/, by file name (e.g. "render-request.schema.json").
 const std::string& protoDocument(const std::string& fileName);
+
+// Validates `value` against a proto schema (e.g. "thumbnails-request.schema.json"): throws
+// lgh::Error naming the JSON path, BadRequest for shape errors, Invalid for range errors.
+void validateAgainstProtoSchema(const nlohmann::json& value, const std::string& schemaFile);
 
 }  // namespace lgh

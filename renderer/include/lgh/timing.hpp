@@ -13,14 +13,16 @@ struct TimingRow {
   std::string name;
   enum class Clock { Gpu, Cpu } clock = Clock::Gpu;
   double milliseconds = 0.0;
+  int depth = 0;  // 0: a pass of the frame; 1: a step inside the depth-0 pass before it; ...
 };
 
 struct TimingTable {
   std::vector<TimingRow> rows;
 
-  void add(std::string name, TimingRow::Clock clock, double ms);
+  void add(std::string name, TimingRow::Clock clock, double ms, int depth = 0);
   // Milliseconds of the row with this name; -1 when absent.
   double get(const std::string& name) const;
+  // The sum of the depth-0 GPU rows (nested steps are inside their pass's time).
   double gpuTotal() const;
   // A fixed-width table for terminals.
   std::string format() const;

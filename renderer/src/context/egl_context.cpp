@@ -4,12 +4,14 @@
 #include <glad/egl.h>
 
 #include <cstring>
+#include <map>
 #include <mutex>
 #include <vector>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "context/container_hints.hpp"
 #include "context/gl_context.hpp"
 #include "lgh/error.hpp"
 
@@ -74,6 +76,34 @@ void loadEglClient() {
   }
 }
 
+// An EGL display is one per device and process: every context on it shares its initialization,
+// and eglTerminate would end it for all of them. Counted here, terminated with its last context.
+class DisplayUsers {
+ public:
+  static void acquire(EGLDisplay display) {
+    std::lock_guard lock(mutex());
+    ++counts()[display];
+  }
+  // True when `display` has no other user left (the caller terminates it).
+  static bool release(EGLDisplay display) {
+    std::lock_guard lock(mutex());
+    auto it = counts().find(display);
+    if (it == counts().end() || --it->second > 0) return false;
+    counts().erase(it);
+    return true;
+  }
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static std::map<EGLDisplay, int>& counts() {
+    static std::map<EGLDisplay, int> c;
+    return c;
+  }
+};
+
 GLADapiproc eglProcAddress(void* /*userData*/, const char* name) {
   return reinterpret_cast<GLADapiproc>(eglGetProcAddress(name));
 }
@@ -86,6 +116,7 @@ class EglContext final : public GlContext {
     EGLint major = 0;
     EGLint minor = 0;
     if (eglInitialize(display_, &major, &minor) != EGL_TRUE) failEgl("eglInitialize");
+    DisplayUsers::acquire(display_);
     initialized_ = true;
     if (gladLoaderLoadEGL(display_) == 0) failEgl("loading EGL functions for the display");
     if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) failEgl("eglBindAPI(EGL_OPENGL_API)");
@@ -100,7 +131,7 @@ class EglContext final : public GlContext {
       eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
       eglDestroyContext(display_, context_);
     }
-    if (initialized_) eglTerminate(display_);
+    if (initialized_ && DisplayUsers::release(display_)) eglTerminate(display_);
   }
 
   EglContext(const EglContext&) = delete;
@@ -125,18 +156,33 @@ class EglContext final : public GlContext {
       throw Error(ErrorCode::Unavailable, "EGL display lacks EGL_KHR_surfaceless_context");
     }
     EGLConfig config = chooseConfig(extensions);
+    // A robust context (GL_KHR_robustness) reports a GPU reset instead of hanging on it: the
+    // renderer then fails the frame and is made again. Not every driver offers one.
+    const bool robustness = hasExtension(extensions, "EGL_EXT_create_context_robustness");
     // Ask for 4.6 core; Mesa's llvmpipe stops at 4.5, which has everything we use.
     for (int minor : {6, 5}) {
-      std::vector<EGLint> attributes{
-          EGL_CONTEXT_MAJOR_VERSION,       4,
-          EGL_CONTEXT_MINOR_VERSION,       minor,
-          EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
-      if (debug) attributes.insert(attributes.end(), {EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE});
-      attributes.push_back(EGL_NONE);
-      context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, attributes.data());
-      if (context_ != EGL_NO_CONTEXT) return;
-      spdlog::info("no OpenGL 4.{} core context on {} ({}); trying lower", minor, info_.contextPath,
-                   eglErrorName(eglGetError()));
+      for (bool robust : {true, false}) {
+        if (robust && !robustness) continue;
+        std::vector<EGLint> attributes{
+            EGL_CONTEXT_MAJOR_VERSION,       4,
+            EGL_CONTEXT_MINOR_VERSION,       minor,
+            EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
+        if (debug) attributes.insert(attributes.end(), {EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE});
+        if (robust) {
+          attributes.insert(attributes.end(), {EGL_CONTEXT_OPENGL_ROBUST_ACCESS_EXT, EGL_TRUE,
+                                               EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY_EXT,
+                                               EGL_LOSE_CONTEXT_ON_RESET_EXT});
+        }
+        attributes.push_back(EGL_NONE);
+        context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, attributes.data());
+        if (context_ != EGL_NO_CONTEXT) {
+          info_.robustContext = robust;
+          return;
+        }
+        spdlog::info("no {}OpenGL 4.{} core context on {} ({}); trying {}", robust ? "robust " : "",
+                     minor, info_.contextPath, eglErrorName(eglGetError()),
+                     robust ? "without robustness" : "lower");
+      }
     }
     throw Error(ErrorCode::Unavailable,
                 fmt::format("no OpenGL 4.5+ core context on {}", info_.contextPath));
@@ -166,12 +212,13 @@ std::vector<EGLDeviceEXT> queryEglDevices() {
                            hasExtension(clientExtensions, "EGL_EXT_device_base");
   if (!hasExtension(clientExtensions, "EGL_EXT_platform_device") || !enumeration ||
       eglQueryDevicesEXT == nullptr) {
-    throw Error(ErrorCode::Unavailable,
-                fmt::format("EGL has no EGL_EXT_platform_device with EGL_EXT_device_enumeration "
-                            "or EGL_EXT_device_base (is the vendor's EGL ICD JSON installed? In "
-                            "containers, NVIDIA_DRIVER_CAPABILITIES must include 'graphics'); "
-                            "client extensions: {}",
-                            clientExtensions != nullptr ? clientExtensions : "none"));
+    throw Error(
+        ErrorCode::Unavailable,
+        fmt::format("EGL has no EGL_EXT_platform_device with EGL_EXT_device_enumeration "
+                    "or EGL_EXT_device_base (is the vendor's EGL ICD JSON installed? In "
+                    "containers, NVIDIA_DRIVER_CAPABILITIES must include 'graphics'); "
+                    "client extensions: {}{}",
+                    clientExtensions != nullptr ? clientExtensions : "none", eglDeviceHints()));
   }
   EGLint count = 0;
   if (eglQueryDevicesEXT(0, nullptr, &count) != EGL_TRUE) failEgl("eglQueryDevicesEXT");
@@ -203,8 +250,8 @@ std::unique_ptr<GlContext> createEglDeviceContext(const RendererOptions& options
   }
   if (options.gpuIndex < 0 || static_cast<size_t>(options.gpuIndex) >= devices.size()) {
     throw Error(ErrorCode::Unavailable,
-                fmt::format("GPU index {} out of range: EGL lists {} device(s)", options.gpuIndex,
-                            devices.size()));
+                fmt::format("GPU index {} out of range: EGL lists {} device(s){}", options.gpuIndex,
+                            devices.size(), eglDeviceHints()));
   }
   EGLDeviceEXT device = devices[static_cast<size_t>(options.gpuIndex)];
   EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device, nullptr);

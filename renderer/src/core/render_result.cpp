@@ -1,4 +1,6 @@
 #include "lgh/render_result.hpp"
+#include "lgh/resource_stats.hpp"
+#include "lgh/shadow_info.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -9,7 +11,33 @@ nlohmann::json DeviceInfo::toJson() const {
           {"egl_device_count", eglDeviceCount}, {"gl_vendor", glVendor},
           {"gl_renderer", glRenderer},          {"gl_version", glVersion},
           {"glsl_version", glslVersion},        {"software_renderer", softwareRenderer},
-          {"image_backend", imageBackend}};
+          {"robust_context", robustContext},    {"image_backend", imageBackend}};
+}
+
+nlohmann::json ResourceStats::toJson() const {
+  nlohmann::json json = {{"gl_objects", glObjects}, {"scene_cache_bytes", sceneCacheBytes}};
+  json["gpu_memory_total_kib"] =
+      gpuMemoryTotalKiB >= 0 ? nlohmann::json(gpuMemoryTotalKiB) : nlohmann::json();
+  json["gpu_memory_available_kib"] =
+      gpuMemoryAvailableKiB >= 0 ? nlohmann::json(gpuMemoryAvailableKiB) : nlohmann::json();
+  return json;
+}
+
+nlohmann::json ShadowInfo::toJson() const {
+  nlohmann::json json = {{"status", status}};
+  if (!reason.empty()) json["reason"] = reason;
+  if (status == "ready") {
+    json["device"] = deviceName;
+    json["driver"] = driverName;
+    json["api_version"] = apiVersion;
+    json["ray_query"] = rayQuery;
+    json["ray_tracing_pipeline"] = rayTracingPipeline;
+    json["external_memory"] = externalMemory;
+    json["external_semaphores"] = externalSemaphores;
+    json["transport"] = transport.empty() ? nlohmann::json() : nlohmann::json(transport);
+    json["process"] = "in-process";
+  }
+  return json;
 }
 
 ImageMetadata RenderResult::metadata() const {

@@ -8,7 +8,7 @@ GLuint GpuTimer::nextQuery() {
 }
 
 int GpuTimer::begin(std::string pass) {
-  Pass entry{std::move(pass), nextQuery(), 0};
+  Pass entry{std::move(pass), nextQuery(), 0, open_++};
   glQueryCounter(entry.begin, GL_TIMESTAMP);
   passes_.push_back(std::move(entry));
   return static_cast<int>(passes_.size()) - 1;
@@ -18,6 +18,7 @@ void GpuTimer::end(int token) {
   Pass& pass = passes_.at(static_cast<size_t>(token));
   pass.end = nextQuery();
   glQueryCounter(pass.end, GL_TIMESTAMP);
+  --open_;
 }
 
 void GpuTimer::collect(TimingTable& table) {
@@ -28,7 +29,7 @@ void GpuTimer::collect(TimingTable& table) {
     glGetQueryObjectui64v(pass.begin, GL_QUERY_RESULT, &begin);
     glGetQueryObjectui64v(pass.end, GL_QUERY_RESULT, &end);
     double ms = end >= begin ? static_cast<double>(end - begin) * 1e-6 : 0.0;
-    table.add(pass.name, TimingRow::Clock::Gpu, ms);
+    table.add(pass.name, TimingRow::Clock::Gpu, ms, pass.depth);
   }
   discard();
 }
@@ -36,6 +37,7 @@ void GpuTimer::collect(TimingTable& table) {
 void GpuTimer::discard() {
   passes_.clear();
   used_ = 0;
+  open_ = 0;
 }
 
 }  // namespace lgh::gl

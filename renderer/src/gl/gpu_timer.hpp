@@ -26,10 +26,12 @@ class GpuTimer {
     std::string name;
     GLuint begin = 0;
     GLuint end = 0;
+    int depth = 0;  // passes open when it began
   };
   std::vector<Query> pool_;
   std::size_t used_ = 0;
   std::vector<Pass> passes_;
+  int open_ = 0;
 };
 
 // Brackets a scope: ScopedGpuPass pass(timer, "gbuffer");

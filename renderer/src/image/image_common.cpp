@@ -57,8 +57,8 @@ double srgbInverseOetf(double encoded) {
 // the inverse OETF of (k + 0.5) / 255, rounded up to a float. Counting the thresholds at or below a
 // value gives exactly round(255 * oetf(value)) without a pow() per channel.
 //
-// The count is found in two steps instead of a binary search per channel (which cost 44-66 ms
-// per 1280x720 frame on the H100 host at PNG level 1, docs/BENCHMARKS.md): a value's top bits
+// The count is found in two steps instead of a binary search per channel (which cost as much as
+// the PNG encode itself; docs/BENCHMARKS.md, "Output"): a value's top bits
 // (exponent and first 8 mantissa bits) index a table holding the count at the smallest float with
 // those bits, and a threshold left between that float and the value is stepped over by
 // comparison. A bucket spans 0.4 % of its value, less than one code's width, so the loop steps at

@@ -6,45 +6,46 @@
 #include <fmt/format.h>
 
 #include "gl/shader_library.hpp"
+#include "gl/slots.hpp"
 #include "lgh/error.hpp"
 
 namespace lgh {
 namespace {
 
-// Mirrors of the constants in glsl/include/lgh_types.glsl.
-constexpr GLuint kGroup = 256;
-constexpr GLuint kBoundsItems = 8;
-constexpr std::size_t kBlock = 1024;
-constexpr int kPyramidSteps = 3;
-constexpr int kSlotPyramid = 0;
-constexpr int kSlotCompactS1 = 6;
-constexpr int kSlotCompactRest = 7;
-constexpr int kSlotCompactAll = 8;
-constexpr int kSlotGatherAll = 9;
-constexpr int kSlotGather = 8;    // + level
-constexpr int kSlotScatter = 24;  // + level
-constexpr int kSlotBinAccum = 41;
-constexpr GLsizeiptr kStateBytes = 2048;  // LghState is 1760 bytes
-constexpr std::size_t kBinTileFloat = 8;  // S1 cells per tile edge (LGH_BIN_TILE_*)
-constexpr std::size_t kBinTileFixed = 6;
-constexpr std::size_t kBinChunk = 1024;  // lights per accumulation work group
+// The sizes and slots the kernels use, from glsl/include/slots.glsl.
+constexpr GLuint kGroup = LGH_GROUP;
+constexpr GLuint kBoundsItems = LGH_BOUNDS_ITEMS;
+constexpr std::size_t kBlock = LGH_BLOCK;
+constexpr int kPyramidSteps = LGH_PYRAMID_STEPS;
+constexpr int kSlotPyramid = LGH_SLOT_PYRAMID;
+constexpr int kSlotCompactS1 = LGH_SLOT_COMPACT_S1;
+constexpr int kSlotCompactRest = LGH_SLOT_COMPACT_REST;
+constexpr int kSlotCompactAll = LGH_SLOT_COMPACT_ALL;
+constexpr int kSlotGatherAll = LGH_SLOT_GATHER_ALL;
+constexpr int kSlotGather = LGH_SLOT_GATHER;    // + level
+constexpr int kSlotScatter = LGH_SLOT_SCATTER;  // + level
+constexpr int kSlotBinAccum = LGH_SLOT_BIN_ACCUM;
+constexpr GLsizeiptr kStateBytes = 2048;                   // LghState is 1760 bytes
+constexpr std::size_t kBinTileFloat = LGH_BIN_TILE_FLOAT;  // S1 cells per tile edge
+constexpr std::size_t kBinTileFixed = LGH_BIN_TILE_FIXED;
+constexpr std::size_t kBinChunk = LGH_BIN_CHUNK;  // lights per accumulation work group
 
 enum Binding : GLuint {
-  kLights = 0,
-  kLevels = 1,
-  kState = 2,
-  kPartials = 3,
-  kAccum = 4,
-  kGridLights = 5,
-  kRecords = 6,
-  kRank = 7,
-  kBitmaps = 8,
-  kBlocks = 9,
-  kDraws = 10,
-  kTouched = 11,
-  kBinCount = 12,
-  kBinStart = 13,
-  kBinItems = 14,
+  kLights = LGH_BIND_BUILD_LIGHTS,
+  kLevels = LGH_BIND_BUILD_LEVELS,
+  kState = LGH_BIND_BUILD_STATE,
+  kPartials = LGH_BIND_BUILD_PARTIALS,
+  kAccum = LGH_BIND_BUILD_ACCUM,
+  kGridLights = LGH_BIND_BUILD_GRID_LIGHTS,
+  kRecords = LGH_BIND_BUILD_RECORDS,
+  kRank = LGH_BIND_BUILD_RANK,
+  kBitmaps = LGH_BIND_BUILD_BITMAPS,
+  kBlocks = LGH_BIND_BUILD_BLOCKS,
+  kDraws = LGH_BIND_BUILD_DRAWS,
+  kTouched = LGH_BIND_BUILD_TOUCHED,
+  kBinCount = LGH_BIND_BUILD_BIN_COUNT,
+  kBinStart = LGH_BIND_BUILD_BIN_START,
+  kBinItems = LGH_BIND_BUILD_BIN_ITEMS,
 };
 
 struct BoundsPartial {

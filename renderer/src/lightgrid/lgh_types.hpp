@@ -108,9 +108,9 @@ enum class LghS1Scatter {
 };
 
 // Below this many lights the binned S1's two extra dependent dispatches cost more than the direct
-// scatter's atomics save. Measured on the H100 (`lgh-bench construct --s1 both`, demo VPLs): at
-// 100K the direct S1 is faster (0.124 against 0.157 ms), at 1M the binned one (0.750 against
-// 1.374 ms); the crossover between them was not measured, 256K is a round guess inside it.
+// scatter's atomics save: the direct S1 was faster at 100K lights and the binned one at 1M
+// (docs/BENCHMARKS.md, `lgh-bench construct --s1 both`); the crossover was not measured, 256K is
+// a round guess between them.
 inline constexpr int kLghBinnedMinLights = 262144;
 
 struct LghBuildSettings {

@@ -22,7 +22,7 @@ void CompositePass::run(const OutputSettings& output, bool hasIndirect, GLuint s
   glProgramUniform1i(program, glGetUniformLocation(program, "uHasIndirect"), hasIndirect ? 1 : 0);
   glProgramUniform1i(program, glGetUniformLocation(program, "uHasShadowRatio"),
                      shadowRatio != 0 ? 1 : 0);
-  glBindTextureUnit(LGH_SLOT_COMPOSITE_RATIO, shadowRatio);
+  glBindTextureUnit(LGH_UNIT_COMPOSITE_RATIO, shadowRatio);
   const float alpha = output.transparentBackground ? 0.0F : 1.0F;
   const auto& bg = output.background;
   glProgramUniform4f(program, glGetUniformLocation(program, "uBackground"), bg[0] * alpha,

@@ -14,6 +14,7 @@ void bindGBuffer(const GBufferTargets& gbuffer) {
                                        gbuffer.albedo.id(), gbuffer.material.id(),
                                        gbuffer.emissive.id()};
   glBindTextures(0, static_cast<GLsizei>(textures.size()), textures.data());
+  glBindTextureUnit(LGH_UNIT_GBUFFER_LAYERS, gbuffer.layers.id());
 }
 
 DirectLightingPass::DirectLightingPass()
@@ -34,8 +35,8 @@ void DirectLightingPass::run(const DirectLightingInputs& inputs, const CameraMat
   glProgramUniform3fv(program, glGetUniformLocation(program, "uCameraPosition"), 1,
                       glm::value_ptr(camera.position));
   glProgramUniform1f(program, glGetUniformLocation(program, "uAmbient"), inputs.ambient);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_LIGHTS, inputs.lights);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_RAY_VISIBILITY, inputs.visibility);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_LIGHTS, inputs.lights);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_VISIBILITY, inputs.visibility);
   bindGBuffer(targets.gbuffer);
   glBindVertexArray(emptyVertexArray_.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -43,11 +43,13 @@ void FrameTargets::resize(int newWidth, int newHeight) {
   gbuffer.albedo = makeTarget(GL_SRGB8_ALPHA8, width, height);
   gbuffer.material = makeTarget(GL_RGBA8, width, height);
   gbuffer.emissive = makeTarget(GL_RGBA16F, width, height);
+  gbuffer.layers = makeTarget(GL_RGBA32UI, width, height);
   gbuffer.depth = makeTarget(GL_DEPTH_COMPONENT32F, width, height);
   gbuffer.framebuffer = gl::Framebuffer();
-  const std::array<const gl::Texture*, 5> colors{
-      &gbuffer.position, &gbuffer.normal, &gbuffer.albedo, &gbuffer.material, &gbuffer.emissive};
-  std::array<GLenum, 5> buffers{};
+  const std::array<const gl::Texture*, 6> colors{&gbuffer.position, &gbuffer.normal,
+                                                 &gbuffer.albedo,   &gbuffer.material,
+                                                 &gbuffer.emissive, &gbuffer.layers};
+  std::array<GLenum, 6> buffers{};
   for (size_t i = 0; i < colors.size(); ++i) {
     buffers[i] = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
     glNamedFramebufferTexture(gbuffer.framebuffer.id(), buffers[i], colors[i]->id(), 0);

@@ -6,12 +6,15 @@
 
 namespace lgh {
 
+// The G-buffer; glsl/include/gbuffer.glsl documents what each target holds. Readers bind them with
+// bindGBuffer() (units 0..4 and LGH_GBUFFER_LAYERS_UNIT).
 struct GBufferTargets {
   gl::Texture position{GL_TEXTURE_2D};  // RGBA32F: world xyz, w = coverage
   gl::Texture normal{GL_TEXTURE_2D};    // RGBA16F
   gl::Texture albedo{GL_TEXTURE_2D};    // SRGB8_ALPHA8: base colour, a = occlusion
   gl::Texture material{GL_TEXTURE_2D};  // RGBA8: metallic, roughness
   gl::Texture emissive{GL_TEXTURE_2D};  // RGBA16F
+  gl::Texture layers{GL_TEXTURE_2D};    // RGBA32UI: material layer parameters (gbuffer.glsl)
   gl::Texture depth{GL_TEXTURE_2D};     // DEPTH_COMPONENT32F
   gl::Framebuffer framebuffer;
 };

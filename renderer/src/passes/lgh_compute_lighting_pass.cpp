@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "gl/shader_library.hpp"
+#include "gl/slots.hpp"
 #include "passes/direct_lighting_pass.hpp"
 
 namespace lgh {
@@ -28,17 +29,17 @@ void LghComputeLightingPass::run(const LghHierarchyBuffers& hierarchy,
   setLightingUniforms(program, params, targets, camera);
   bindHierarchy(hierarchy);
   bindGBuffer(frame.gbuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, lgh_binding::kSamples, targets.shadowSamples.id());
-  glBindImageTexture(lgh_binding::kImageReservoirSum, targets.reservoirSum.id(), 0, GL_FALSE, 0,
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_SAMPLES, targets.shadowSamples.id());
+  glBindImageTexture(LGH_IMAGE_RESERVOIR_SUM, targets.reservoirSum.id(), 0, GL_FALSE, 0,
                      GL_READ_WRITE, GL_R32F);
-  glBindImageTexture(lgh_binding::kImageOverdraw, targets.overdraw.id(), 0, GL_FALSE, 0,
-                     GL_READ_WRITE, GL_R32UI);
+  glBindImageTexture(LGH_IMAGE_OVERDRAW, targets.overdraw.id(), 0, GL_FALSE, 0, GL_READ_WRITE,
+                     GL_R32UI);
   if (direct) {
-    glBindImageTexture(lgh_binding::kImageOutput, frame.indirect.id(), 0, GL_FALSE, 0,
-                       GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(LGH_IMAGE_OUTPUT, frame.indirect.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                       GL_RGBA16F);
   } else {
-    glBindImageTexture(lgh_binding::kImageOutput, targets.accumulation.id(), 0, GL_FALSE, 0,
-                       GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(LGH_IMAGE_OUTPUT, targets.accumulation.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                       GL_RGBA32F);
   }
   const int tiles = targets.interleave * targets.interleave;
   glDispatchCompute(blocks(targets.tileWidth), blocks(targets.tileHeight),

@@ -1,5 +1,5 @@
 // LGH compute lighting: the hierarchy of the raster path evaluated by compute shaders, for GPUs
-// whose rasterizers are weak next to their compute units (the H100; DESIGN.md, "Devices").
+// whose rasterizers are weak next to their compute units (Hopper; docs/ARCHITECTURE.md).
 //   inputs:  the hierarchy (grid lights, level table), the full-resolution G-buffer, camera
 //   outputs: radiance into FrameTargets::indirect (no interleaving) or the RGBA32F tile atlas of
 //            LghLightingTargets (interleaved, for the shared compositing pass), the reservoir sum

@@ -1,5 +1,5 @@
-// The many-light part of a frame (DESIGN.md, "Data flow", steps 5-7), between direct lighting and
-// the composite:
+// The many-light part of a frame (docs/ARCHITECTURE.md, "One frame", step 3), between the G-buffer
+// and the composite:
 //   inputs:  LghSettings, the scene (VPLs are sampled on its surfaces), camera, the G-buffer
 //   outputs: FrameTargets::indirect (unshadowed LGH lighting), the per-pixel shadow samples in
 //            LghLightingTargets, timing rows ("lgh build" and the builder's steps, "lgh lighting",

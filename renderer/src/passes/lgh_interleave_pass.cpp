@@ -4,6 +4,7 @@
 #include <array>
 
 #include "gl/shader_library.hpp"
+#include "gl/slots.hpp"
 #include "passes/direct_lighting_pass.hpp"
 
 namespace lgh {
@@ -38,7 +39,7 @@ void LghInterleavePass::split(const LghLightingParams& params, const CameraMatri
   glUseProgram(program);
   setLightingUniforms(program, params, targets, camera);
   bindGBuffer(frame.gbuffer);
-  glBindTextureUnit(lgh_binding::kTextureAtlas, frame.gbuffer.depth.id());
+  glBindTextureUnit(LGH_UNIT_PASS_INPUT, frame.gbuffer.depth.id());
   glBindVertexArray(emptyVertexArray_.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);
@@ -57,8 +58,8 @@ void LghInterleavePass::composite(const LghLightingParams& params, const CameraM
   setLightingUniforms(program, params, targets, camera);
   setUniform(program, "uPixelFootprint", pixelFootprint(camera, targets.height));
   bindGBuffer(frame.gbuffer);
-  glBindTextureUnit(lgh_binding::kTextureAtlas, targets.accumulation.id());
-  glBindImageTexture(lgh_binding::kImageOutput, frame.indirect.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+  glBindTextureUnit(LGH_UNIT_PASS_INPUT, targets.accumulation.id());
+  glBindImageTexture(LGH_IMAGE_OUTPUT, frame.indirect.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
                      GL_RGBA16F);
   glDispatchCompute(groups(targets.width), groups(targets.height), 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |

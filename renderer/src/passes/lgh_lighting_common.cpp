@@ -34,11 +34,13 @@ void allocateTileGBuffer(GBufferTargets& tiles, int width, int height) {
   tiles.normal = makeTexture(GL_RGBA16F, width, height);
   tiles.albedo = makeTexture(GL_SRGB8_ALPHA8, width, height);
   tiles.material = makeTexture(GL_RGBA8, width, height);
+  tiles.layers = makeTexture(GL_RGBA32UI, width, height);
   tiles.depth = makeTexture(GL_DEPTH_COMPONENT32F, width, height);
   tiles.framebuffer = gl::Framebuffer();
-  const std::array<const gl::Texture*, 4> colors{&tiles.position, &tiles.normal, &tiles.albedo,
-                                                 &tiles.material};
-  std::array<GLenum, 4> buffers{};
+  // Location 4 is the layers target here (the tiles carry no emission).
+  const std::array<const gl::Texture*, 5> colors{&tiles.position, &tiles.normal, &tiles.albedo,
+                                                 &tiles.material, &tiles.layers};
+  std::array<GLenum, 5> buffers{};
   for (std::size_t i = 0; i < colors.size(); ++i) {
     buffers[i] = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
     glNamedFramebufferTexture(tiles.framebuffer.id(), buffers[i], colors[i]->id(), 0);
@@ -167,8 +169,8 @@ void setLightingUniforms(GLuint program, const LghLightingParams& params,
 }
 
 void bindHierarchy(const LghHierarchyBuffers& hierarchy) {
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, lgh_binding::kGridLights, hierarchy.gridLights);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, lgh_binding::kLevels, hierarchy.levels);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_GRID_LIGHTS, hierarchy.gridLights);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_LEVELS, hierarchy.levels);
 }
 
 FloatImage readTextureImage(const gl::Texture& texture, int width, int height) {

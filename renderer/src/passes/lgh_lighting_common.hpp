@@ -1,7 +1,7 @@
 // What the LGH lighting passes share: their settings, the hierarchy's buffers, the textures and
 // buffers they write (the tile atlas, the reservoir, the shadow samples, the overdraw counter),
-// the bindings of glsl/include/lgh_shading.glsl, and read-backs for tests and the benchmark.
-// docs/LIGHTING.md describes the passes.
+// the uniforms of glsl/include/lgh_shading.glsl (bindings: glsl/include/slots.glsl), and read-backs
+// for tests and the benchmark. docs/LIGHTING.md describes the passes.
 #pragma once
 
 #include <cstdint>
@@ -12,26 +12,13 @@
 #include <glm/glm.hpp>
 
 #include "gl/gl_objects.hpp"
+#include "gl/slots.hpp"
 #include "lgh/image.hpp"
 #include "lgh/request.hpp"
 #include "passes/frame_targets.hpp"
 #include "scene/camera.hpp"
 
 namespace lgh {
-
-// Mirrors of the bindings in glsl/include/lgh_shading.glsl.
-namespace lgh_binding {
-inline constexpr GLuint kGridLights = 0;
-inline constexpr GLuint kLevels = 1;
-inline constexpr GLuint kSamples = 2;
-inline constexpr GLuint kPointLights = 3;
-inline constexpr GLuint kTileDraws = 4;
-inline constexpr GLuint kImageReservoirSum = 0;
-inline constexpr GLuint kImageLock = 1;
-inline constexpr GLuint kImageOverdraw = 2;
-inline constexpr GLuint kImageOutput = 3;
-inline constexpr GLuint kTextureAtlas = 5;  // texture unit after the G-buffer's 0..4
-}  // namespace lgh_binding
 
 struct LghLightingParams {
   float alpha = 1.0F;

@@ -3,6 +3,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/shader_library.hpp"
+#include "gl/slots.hpp"
 #include "lightgrid/lgh_types.hpp"
 #include "passes/direct_lighting_pass.hpp"
 
@@ -15,13 +16,12 @@ constexpr int kGroupSize = 8;
 GLuint groups(int pixels) { return static_cast<GLuint>((pixels + kGroupSize - 1) / kGroupSize); }
 
 void bindReservoirStorage(const LghLightingTargets& targets) {
-  glBindImageTexture(lgh_binding::kImageReservoirSum, targets.reservoirSum.id(), 0, GL_FALSE, 0,
+  glBindImageTexture(LGH_IMAGE_RESERVOIR_SUM, targets.reservoirSum.id(), 0, GL_FALSE, 0,
                      GL_READ_WRITE, GL_R32F);
-  glBindImageTexture(lgh_binding::kImageLock, targets.lock.id(), 0, GL_FALSE, 0, GL_READ_WRITE,
+  glBindImageTexture(LGH_IMAGE_LOCK, targets.lock.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  glBindImageTexture(LGH_IMAGE_OVERDRAW, targets.overdraw.id(), 0, GL_FALSE, 0, GL_READ_WRITE,
                      GL_R32UI);
-  glBindImageTexture(lgh_binding::kImageOverdraw, targets.overdraw.id(), 0, GL_FALSE, 0,
-                     GL_READ_WRITE, GL_R32UI);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, lgh_binding::kSamples, targets.shadowSamples.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_SAMPLES, targets.shadowSamples.id());
 }
 
 // Additive accumulation of back faces that lie behind the surface; no depth writes, and depth
@@ -127,7 +127,7 @@ void LghRasterLightingPass::writeDrawCommands(const LghLightingParams& params,
   setUniform(program, "uStartLevel", params.startLevel);
   setUniform(program, "uInterleave", targets.interleave);
   setUniform(program, "uVertexCount", kCubeVertices);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, lgh_binding::kTileDraws, tileDraws_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_TILE_DRAWS, tileDraws_.id());
   glDispatchCompute(1, 1, 1);
   glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
 }
@@ -201,8 +201,8 @@ void LghRasterLightingPass::resolve(const LghLightingParams& params, const Camer
   glUseProgram(program);
   setLightingUniforms(program, params, targets, camera);
   bindGBuffer(frame.gbuffer);
-  glBindTextureUnit(lgh_binding::kTextureAtlas, targets.accumulation.id());
-  glBindImageTexture(lgh_binding::kImageOutput, frame.indirect.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+  glBindTextureUnit(LGH_UNIT_PASS_INPUT, targets.accumulation.id());
+  glBindImageTexture(LGH_IMAGE_OUTPUT, frame.indirect.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
                      GL_RGBA16F);
   glDispatchCompute(groups(targets.width), groups(targets.height), 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |

@@ -13,7 +13,11 @@ GpuLight packLight(const LightDesc& light) {
   packed.directionRange = glm::vec4(direction, light.range);
   packed.colorIntensity = glm::vec4(v3(light.color), light.intensity);
   packed.attenuation = glm::vec4(v3(light.attenuation), light.spotExponent);
-  packed.cone = glm::vec4(std::cos(light.innerConeAngle), std::cos(light.outerConeAngle), 0, 0);
+  // cone.z: the size shadow rays see (glsl/shadow_ray_setup.comp).
+  const float shadowSize =
+      light.type == LightType::Directional ? light.angularRadius : light.radius;
+  packed.cone =
+      glm::vec4(std::cos(light.innerConeAngle), std::cos(light.outerConeAngle), shadowSize, 0);
   return packed;
 }
 

@@ -69,9 +69,9 @@ void ShadowFilterPass::ratio(const ShadowFilterInputs& inputs, const FrameTarget
   glProgramUniform1i(program, location(program, "uLghSampleCount"), inputs.layout.lghSamples);
   glProgramUniform1i(program, location(program, "uFirstLghRay"),
                      inputs.layout.shadowedLights * inputs.layout.lightSamples);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_RAY_VISIBILITY, inputs.visibility);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_SHADOW_SAMPLES, inputs.lghSamples);
-  glBindImageTexture(LGH_SLOT_SHADOW_RATIO_OUT, output, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_VISIBILITY, inputs.visibility);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_SAMPLES, inputs.lghSamples);
+  glBindImageTexture(LGH_IMAGE_SHADOW_RATIO, output, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
   glDispatchCompute(gl::groups2D(frame.width), gl::groups2D(frame.height), 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
@@ -89,8 +89,8 @@ void ShadowFilterPass::atrous(int step, const CameraMatrices& camera, const Fram
   glProgramUniform1f(program, location(program, "uNormalPower"), kNormalPower);
   glProgramUniform1f(program, location(program, "uPlaneSigma"), kPlaneSigma);
   bindGBuffer(frame.gbuffer);
-  glBindTextureUnit(LGH_SLOT_SHADOW_RATIO_IN, input);
-  glBindImageTexture(LGH_SLOT_SHADOW_RATIO_OUT, output, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+  glBindTextureUnit(LGH_UNIT_PASS_INPUT, input);
+  glBindImageTexture(LGH_IMAGE_SHADOW_RATIO, output, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
   glDispatchCompute(gl::groups2D(frame.width), gl::groups2D(frame.height), 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }

@@ -31,10 +31,33 @@ void ShadowRaySetupPass::run(const ShadowRaySetupInputs& inputs, const FrameTarg
   glProgramUniform1f(program, location(program, "uSurfaceOffset"), inputs.surfaceOffset);
   glProgramUniform1ui(program, location(program, "uSeed"), inputs.seed);
   bindGBuffer(frame.gbuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_LIGHTS, inputs.lights);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_SHADOW_SAMPLES, inputs.lghSamples);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_RAY_ORIGINS, origins);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_SLOT_RAY_TARGETS, targets);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_LIGHTS, inputs.lights);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_SAMPLES, inputs.lghSamples);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_ORIGINS, origins);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_TARGETS, targets);
+  glDispatchCompute(gl::groups2D(frame.width), gl::groups2D(frame.height), 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+void ShadowRaySetupPass::runToPointLights(GLuint pointLights, int first, int count,
+                                          float surfaceOffset, const FrameTargets& frame,
+                                          GLuint origins, GLuint targets) {
+  if (pointLightProgram_.id() == 0) {
+    pointLightProgram_ =
+        gl::buildComputeProgram("shadow_ray_setup.comp", "#define LGH_POINT_LIGHT_RAYS 1\n");
+  }
+  const GLuint program = pointLightProgram_.id();
+  glUseProgram(program);
+  ShadowRayLayout layout;
+  layout.lghSamples = count;  // rays per pixel; the shader writes them as point-light targets
+  setShadowRayUniforms(program, layout);
+  glProgramUniform2i(program, location(program, "uFrameSize"), frame.width, frame.height);
+  glProgramUniform1i(program, location(program, "uFirstLight"), first);
+  glProgramUniform1f(program, location(program, "uSurfaceOffset"), surfaceOffset);
+  bindGBuffer(frame.gbuffer);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_POINT_LIGHTS, pointLights);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_ORIGINS, origins);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_TARGETS, targets);
   glDispatchCompute(gl::groups2D(frame.width), gl::groups2D(frame.height), 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }

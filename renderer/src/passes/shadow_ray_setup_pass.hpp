@@ -2,7 +2,7 @@
 //   inputs:  G-buffer position and normal, the frame's lights buffer (the first `shadowedLights`
 //            get `lightSamples` rays each), the LGH's k shadow samples per pixel (when it ran)
 //   outputs: the ray batch's origins and targets (layout: vk/shadow_tracer.hpp)
-//   shaders: glsl/shadow_ray_setup.comp (include/shadow_rays.glsl)
+//   shaders: glsl/shadow_ray_setup.comp (include/ray_batch.glsl)
 #pragma once
 
 #include <cstdint>
@@ -33,12 +33,17 @@ class ShadowRaySetupPass {
   ShadowRaySetupPass();
   void run(const ShadowRaySetupInputs& inputs, const FrameTargets& frame, GLuint origins,
            GLuint targets);
+  // The shadowed brute-force reference's rays: from every pixel to each of `count` point lights
+  // (PointLight SSBO) from `first` on, at their exact positions.
+  void runToPointLights(GLuint pointLights, int first, int count, float surfaceOffset,
+                        const FrameTargets& frame, GLuint origins, GLuint targets);
 
  private:
   gl::Program program_;
+  gl::Program pointLightProgram_ = gl::Program::empty();
 };
 
-// Sets the uniforms of glsl/include/shadow_rays.glsl on `program`.
+// Sets the uniforms of glsl/include/ray_batch.glsl on `program`.
 void setShadowRayUniforms(GLuint program, const ShadowRayLayout& layout);
 
 }  // namespace lgh

@@ -201,9 +201,21 @@ LghSettings readLgh(const json& object) {
   return lgh;
 }
 
+PrimitiveSettings readPrimitives(const json& object) {
+  PrimitiveSettings primitives;
+  read(object, "point_size", primitives.pointSize);
+  readEnum(object, "point_shape", primitives.pointShape);
+  read(object, "line_width", primitives.lineWidth);
+  return primitives;
+}
+
 RenderSettings readSettings(const json& object) {
   RenderSettings settings;
   read(object, "ambient", settings.ambient);
+  read(object, "ignore_unsupported_extensions", settings.ignoreUnsupportedExtensions);
+  if (const auto it = object.find("primitives"); it != object.end()) {
+    settings.primitives = readPrimitives(*it);
+  }
   readEnum(object, "shadows", settings.shadows.mode);
   readEnum(object, "shadow_path", settings.shadows.tracing);
   read(object, "shadow_light_samples", settings.shadows.lightSamples);
@@ -212,7 +224,19 @@ RenderSettings readSettings(const json& object) {
   return settings;
 }
 
-// Everything but the scene, whose inline GLB is decoded only after the other checks pass.
+SceneOptions readSceneOptions(const json& scene) {
+  SceneOptions options;
+  if (const auto it = scene.find("animation"); it != scene.end()) {
+    SceneAnimation animation;
+    read(*it, "index", animation.index);
+    read(*it, "time", animation.time);
+    options.animation = animation;
+  }
+  read(scene, "material_variant", options.materialVariant);
+  return options;
+}
+
+// Everything but the scene source, whose inline GLB is decoded only after the other checks pass.
 RenderRequest readRequestWithoutScene(const json& request) {
   RenderRequest result;
   if (const auto lights = request.find("lights"); lights != request.end()) {
@@ -224,6 +248,9 @@ RenderRequest readRequestWithoutScene(const json& request) {
   if (const auto it = request.find("output"); it != request.end()) result.output = readOutput(*it);
   if (const auto it = request.find("settings"); it != request.end()) {
     result.settings = readSettings(*it);
+  }
+  if (const auto it = request.find("scene"); it != request.end()) {
+    result.sceneOptions = readSceneOptions(*it);
   }
   return result;
 }
@@ -345,6 +372,22 @@ void checkMeaning(const RenderRequest& request) {
 
 // --- Scene ------------------------------------------------------------------------------------
 
+// Exactly one source in scene: the schema says it with oneOf, whose failure a validator can only
+// report as "no branch matched"; this says it in words, before the schema runs.
+void checkSceneSourceCount(const json& request) {
+  const auto it = request.find("scene");
+  if (it == request.end() || !it->is_object()) return;  // the schema reports other types
+  std::size_t sources = 0;
+  for (const char* key : {"asset", "demo", "glb_base64"}) sources += it->contains(key) ? 1 : 0;
+  if (sources != 1) {
+    throw Error(ErrorCode::BadRequest,
+                fmt::format("must have exactly one of the properties asset, demo or glb_base64, "
+                            "got {}",
+                            sources),
+                "/scene");
+  }
+}
+
 std::string fileNameOf(const std::string& path) {
   const std::size_t slash = path.find_last_of('/');
   return slash == std::string::npos ? path : path.substr(slash + 1);
@@ -421,6 +464,7 @@ RenderRequest parseRenderRequest(const json& request, const RequestLimits& limit
                 fmt::format("the request must be a JSON object, got {}", request.type_name()), "/");
   }
   rejectNonFiniteNumbers(request);
+  checkSceneSourceCount(request);
   validateRequestSchema(request);
   RenderRequest result = readRequestWithoutScene(request);
   checkLimits(result, limits);

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -9,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "lgh/error.hpp"
+#include "lgh/request.hpp"
 #include "request/json_pointer.hpp"
 #include "request/schema_bundle.hpp"
 #include "request/schema_lookup.hpp"
@@ -20,10 +24,8 @@ namespace {
 using json = nlohmann::json;
 using Nodes = std::vector<const json*>;
 
-constexpr const char* kRequestSchemaFile = "render-request.schema.json";
-
-// The request schema, bundled and compiled once per process. valijson only reads the Schema
-// while validating, so threads can share it (each call makes its own Validator).
+// A proto schema, bundled and compiled once per process. valijson only reads the Schema while
+// validating, so threads can share it (each call makes its own Validator).
 struct CompiledSchema {
   json bundle;
   valijson::Schema schema;
@@ -40,9 +42,14 @@ struct CompiledSchema {
   }
 };
 
-const CompiledSchema& requestSchema() {
-  static const CompiledSchema compiled(kRequestSchemaFile);
-  return compiled;
+// Compiled on first use; entries are never removed, so references stay valid.
+const CompiledSchema& compiledSchema(const std::string& file) {
+  static std::mutex mutex;
+  static std::map<std::string, std::unique_ptr<CompiledSchema>> compiled;
+  std::lock_guard lock(mutex);
+  std::unique_ptr<CompiledSchema>& entry = compiled[file];
+  if (!entry) entry = std::make_unique<CompiledSchema>(file);
+  return *entry;
 }
 
 // What a valijson error is about. valijson 1.0 reports only a context path and an English
@@ -57,6 +64,7 @@ enum class IssueKind {
   ExclusiveMinimum,
   Maximum,
   ExclusiveMaximum,
+  Pattern,
   ItemCount,
   Length,
   PropertyCount,
@@ -90,6 +98,7 @@ constexpr Pattern kPatterns[] = {
     {"Expected number less than", IssueKind::ExclusiveMaximum},
     {"Expected number greater than or equal to", IssueKind::Minimum},
     {"Expected number greater than", IssueKind::ExclusiveMinimum},
+    {"Failed to match regex specified by 'pattern'", IssueKind::Pattern},
     {"Array should contain", IssueKind::ItemCount},
     {"String should be no", IssueKind::Length},
     {"Object should have", IssueKind::PropertyCount},
@@ -326,6 +335,11 @@ std::string messageFor(const Issue& issue, const Nodes& nodes, const json* value
     case IssueKind::ExclusiveMaximum:
       return fmt::format("must be less than {}, got {}",
                          boundText(issue, nodes, "exclusiveMaximum"), got);
+    case IssueKind::Pattern: {
+      const std::vector<json> patterns = keywordValues(nodes, "pattern");
+      if (patterns.empty()) return issue.description;
+      return fmt::format("must match {}, got {}", patterns.front().get<std::string>(), got);
+    }
     case IssueKind::ItemCount:
       return itemCountMessage(nodes, value);
     case IssueKind::Length:
@@ -359,13 +373,17 @@ Error toError(const Issue& issue, const json& bundle, const json& request) {
 }  // namespace
 
 void validateRequestSchema(const json& request) {
-  const CompiledSchema& compiled = requestSchema();
+  validateAgainstProtoSchema(request, "render-request.schema.json");
+}
+
+void validateAgainstProtoSchema(const json& request, const std::string& schemaFile) {
+  const CompiledSchema& compiled = compiledSchema(schemaFile);
   valijson::Validator validator(valijson::Validator::kStrongTypes);
   valijson::ValidationResults results;
   const valijson::adapters::NlohmannJsonAdapter target(request);
   if (validator.validate(compiled.schema, target, &results)) return;
   if (results.numErrors() == 0) {
-    throw Error(ErrorCode::BadRequest, "does not match the request schema", "/");
+    throw Error(ErrorCode::BadRequest, fmt::format("does not match {}", schemaFile), "/");
   }
   throw toError(mostSpecific(results), compiled.bundle, request);
 }

@@ -1,5 +1,6 @@
-// Validation of a request against proto/render-request.schema.json, with valijson's errors turned
-// into one lgh::Error that names the most specific field and says what is wrong with it.
+// Validation of a request against a proto schema (proto/render-request.schema.json and the
+// others), with valijson's errors turned into one lgh::Error that names the most specific field
+// and says what is wrong with it. validateAgainstProtoSchema is public (lgh/request.hpp).
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -26,39 +26,45 @@ int mipLevels(int width, int height) {
 GpuScene::GpuScene(const Scene& scene, float maxAnisotropy) : maxAnisotropy_(maxAnisotropy) {
   for (const Mesh& mesh : scene.meshes) {
     auto& gpuMesh = meshes_.emplace_back();
-    for (const Primitive& primitive : mesh.primitives) {
-      GpuPrimitive& gpu = gpuMesh.emplace_back();
-      const auto vertexBytes = static_cast<GLsizeiptr>(primitive.vertices.size() * sizeof(Vertex));
-      const auto indexBytes =
-          static_cast<GLsizeiptr>(primitive.indices.size() * sizeof(std::uint32_t));
-      glNamedBufferStorage(gpu.vertices.id(), std::max<GLsizeiptr>(vertexBytes, 1),
-                           primitive.vertices.data(), 0);
-      glNamedBufferStorage(gpu.indices.id(), std::max<GLsizeiptr>(indexBytes, 1),
-                           primitive.indices.data(), 0);
-      gpuBytes_ += static_cast<std::size_t>(vertexBytes + indexBytes);
-      gpu.indexCount = static_cast<GLsizei>(primitive.indices.size());
-      const GLuint vao = gpu.vertexArray.id();
-      glVertexArrayVertexBuffer(vao, 0, gpu.vertices.id(), 0, sizeof(Vertex));
-      glVertexArrayElementBuffer(vao, gpu.indices.id());
-      setAttribute(vao, 0, 3, offsetof(Vertex, position));
-      setAttribute(vao, 1, 3, offsetof(Vertex, normal));
-      setAttribute(vao, 2, 4, offsetof(Vertex, tangent));
-      setAttribute(vao, 3, 2, offsetof(Vertex, uv0));
-      setAttribute(vao, 4, 2, offsetof(Vertex, uv1));
-      setAttribute(vao, 5, 4, offsetof(Vertex, color));
+    for (const auto* list : {&mesh.primitives, &mesh.linesAndPoints}) {
+      for (const Primitive& primitive : *list) uploadPrimitive(primitive, gpuMesh.emplace_back());
     }
   }
   for (const MeshInstance& instance : scene.instances) {
     if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= meshes_.size()) continue;
     const Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
     auto& gpuMesh = meshes_[static_cast<size_t>(instance.mesh)];
+    // gpuMesh holds mesh.primitives, then mesh.linesAndPoints, in order.
     for (size_t p = 0; p < gpuMesh.size(); ++p) {
       if (gpuMesh[p].indexCount == 0) continue;
-      drawItems_.push_back({gpuMesh[p].vertexArray.id(), gpuMesh[p].indexCount,
-                            mesh.primitives[p].material, instance.world});
+      const bool triangles = p < mesh.primitives.size();
+      const Primitive& primitive =
+          triangles ? mesh.primitives[p] : mesh.linesAndPoints[p - mesh.primitives.size()];
+      drawItems_.push_back({gpuMesh[p].vertexArray.id(), gpuMesh[p].indexCount, primitive.material,
+                            instance.world, primitive.topology, primitive.unlit});
     }
   }
   uploadTextures(scene);
+}
+
+void GpuScene::uploadPrimitive(const Primitive& primitive, GpuPrimitive& gpu) {
+  const auto vertexBytes = static_cast<GLsizeiptr>(primitive.vertices.size() * sizeof(Vertex));
+  const auto indexBytes = static_cast<GLsizeiptr>(primitive.indices.size() * sizeof(std::uint32_t));
+  glNamedBufferStorage(gpu.vertices.id(), std::max<GLsizeiptr>(vertexBytes, 1),
+                       primitive.vertices.data(), 0);
+  glNamedBufferStorage(gpu.indices.id(), std::max<GLsizeiptr>(indexBytes, 1),
+                       primitive.indices.data(), 0);
+  gpuBytes_ += static_cast<std::size_t>(vertexBytes + indexBytes);
+  gpu.indexCount = static_cast<GLsizei>(primitive.indices.size());
+  const GLuint vao = gpu.vertexArray.id();
+  glVertexArrayVertexBuffer(vao, 0, gpu.vertices.id(), 0, sizeof(Vertex));
+  glVertexArrayElementBuffer(vao, gpu.indices.id());
+  setAttribute(vao, 0, 3, offsetof(Vertex, position));
+  setAttribute(vao, 1, 3, offsetof(Vertex, normal));
+  setAttribute(vao, 2, 4, offsetof(Vertex, tangent));
+  setAttribute(vao, 3, 2, offsetof(Vertex, uv0));
+  setAttribute(vao, 4, 2, offsetof(Vertex, uv1));
+  setAttribute(vao, 5, 4, offsetof(Vertex, color));
 }
 
 void GpuScene::uploadTextures(const Scene& scene) {
@@ -83,11 +89,9 @@ void GpuScene::uploadTextures(const Scene& scene) {
     bindings_[key] = {texture.id(), samplerFor(ref.sampler)};
   };
   for (const Material& material : scene.materials) {
-    upload(material.baseColorTexture, true);
-    upload(material.emissiveTexture, true);
-    upload(material.metallicRoughnessTexture, false);
-    upload(material.normalTexture, false);
-    upload(material.occlusionTexture, false);
+    for (const MaterialTextureSlot& slot : materialTextureSlots(material)) {
+      upload(*slot.texture, slot.srgb);
+    }
   }
 }
 

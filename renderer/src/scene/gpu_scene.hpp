@@ -1,6 +1,6 @@
-// A Scene uploaded to GL: vertex/index buffers per primitive, textures with mipmaps (sRGB or
-// linear as the material slot needs), sampler objects from the glTF samplers with anisotropic
-// filtering. Owned by the scene cache; passes only draw it.
+// A Scene uploaded to GL: vertex/index buffers per primitive (triangles, lines and points),
+// textures with mipmaps (sRGB or linear as the material slot needs), sampler objects from the glTF
+// samplers with anisotropic filtering. Owned by the scene cache; passes only draw it.
 #pragma once
 
 #include <functional>
@@ -24,6 +24,8 @@ class GpuScene {
     GLsizei indexCount;
     int material;  // -1: default material
     glm::mat4 world;
+    Topology topology = Topology::Triangles;
+    bool unlit = false;  // lines and points without normals
   };
   // Every primitive of every instance.
   const std::vector<DrawItem>& drawItems() const { return drawItems_; }
@@ -46,6 +48,7 @@ class GpuScene {
   };
   GLuint samplerFor(const Sampler& sampler);
   void uploadTextures(const Scene& scene);
+  void uploadPrimitive(const Primitive& primitive, GpuPrimitive& gpu);
 
   std::vector<std::vector<GpuPrimitive>> meshes_;
   std::vector<DrawItem> drawItems_;

@@ -3,6 +3,7 @@
 // built from it.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -24,16 +25,27 @@ struct Vertex {
   glm::vec4 color{1.0F};  // COLOR_0, white when absent
 };
 
-// One glTF primitive: an indexed triangle list (non-indexed input gets 0..n-1).
+// How a primitive's indices are read: glTF's seven modes arrive as one of these three (strips,
+// fans and loops are unrolled into lists by the loader).
+enum class Topology { Triangles, Lines, Points };
+
+// One glTF primitive: an indexed list (non-indexed input gets 0..n-1) of triangles, lines (two
+// indices each) or points.
 struct Primitive {
   std::vector<Vertex> vertices;
   std::vector<std::uint32_t> indices;
   int material = -1;  // -1: default material
+  Topology topology = Topology::Triangles;
+  // Lines and points without NORMAL are drawn unlit, as the glTF specification asks.
+  bool unlit = false;
 };
 
 struct Mesh {
   std::string name;
+  // Triangle lists: what every consumer of surfaces reads (VPL placement, ray tracing).
   std::vector<Primitive> primitives;
+  // Lines and points (topology Lines or Points): drawn into the G-buffer, framed by the camera.
+  std::vector<Primitive> linesAndPoints;
 };
 
 // A mesh placed in the world by the flattened node hierarchy.
@@ -52,14 +64,72 @@ struct Sampler {
   int wrapT = 0x2901;
 };
 
+// KHR_texture_transform: uv' = T * R * S * uv (offset, rotation, scale); identity by default.
+struct UvTransform {
+  glm::vec2 offset{0.0F};
+  float rotation = 0.0F;  // radians, counter-clockwise in UV space
+  glm::vec2 scale{1.0F};
+  // The 3x2 affine matrix (3 columns of vec2) the shader multiplies vec3(uv, 1) by.
+  glm::mat3x2 matrix() const;
+};
+
 struct TextureRef {
   int image = -1;  // index into Scene::images; -1: none
   int texCoord = 0;
   Sampler sampler;
+  UvTransform transform;
   bool valid() const { return image >= 0; }
 };
 
-// glTF PBR metallic-roughness material.
+// How the lighting passes shade a material: written to the G-buffer as a small integer, switched on
+// by evaluateBrdfCosine() in glsl/include/brdf.glsl. New models get the next free number here and
+// a case there (glsl/include/material_models.glsl keeps the numbers in step).
+enum class MaterialModel : std::uint8_t {
+  MetallicRoughness = 0,  // glTF PBR, with the KHR_materials_* layers below
+  Unlit = 1,              // KHR_materials_unlit (and lines/points without normals)
+};
+
+// KHR_materials_clearcoat: a dielectric coat (IOR 1.5) over the base material.
+struct Clearcoat {
+  float factor = 0.0F;
+  float roughness = 0.0F;
+  TextureRef texture;           // R
+  TextureRef roughnessTexture;  // G
+  TextureRef normalTexture;
+  float normalScale = 1.0F;
+};
+
+// KHR_materials_sheen: a retro-reflective cloth lobe (Charlie distribution).
+struct Sheen {
+  glm::vec3 colorFactor{0.0F};
+  float roughnessFactor = 0.0F;
+  TextureRef colorTexture;      // sRGB
+  TextureRef roughnessTexture;  // A
+};
+
+// KHR_materials_specular and KHR_materials_ior: the dielectric Fresnel of the base.
+struct Specular {
+  float factor = 1.0F;
+  glm::vec3 colorFactor{1.0F};
+  float ior = 1.5F;
+  TextureRef texture;       // A
+  TextureRef colorTexture;  // sRGB
+};
+
+// KHR_materials_transmission and KHR_materials_volume, approximated (docs/MATERIALS.md): the
+// transmitted share of the diffuse lobe is lit from behind the surface, tinted by the volume's
+// attenuation over its thickness; what lies behind the surface is not seen through it.
+struct Transmission {
+  float factor = 0.0F;
+  TextureRef texture;  // R
+  float thicknessFactor = 0.0F;
+  glm::vec3 attenuationColor{1.0F};
+  float attenuationDistance = 0.0F;  // 0: infinite (no attenuation)
+  // The volume's tint at the surface's thickness, per channel in 0..1.
+  glm::vec3 tint() const;
+};
+
+// glTF PBR metallic-roughness material, with the KHR_materials_* extensions this renderer knows.
 struct Material {
   std::string name;
   glm::vec4 baseColorFactor{1.0F};
@@ -76,7 +146,24 @@ struct Material {
   TextureRef normalTexture;             // linear, tangent space
   TextureRef occlusionTexture;          // linear, R
   TextureRef emissiveTexture;           // sRGB
+  MaterialModel model = MaterialModel::MetallicRoughness;
+  Clearcoat clearcoat;
+  Sheen sheen;
+  Specular specular;
+  Transmission transmission;
+  // Whether any layer above differs from plain metallic-roughness (the G-buffer then carries them).
+  bool hasLayers() const;
 };
+
+// Every texture of a material in the G-buffer shader's slot order (texture unit = index; see
+// glsl/gbuffer.frag), with whether it holds sRGB colour.
+struct MaterialTextureSlot {
+  const TextureRef* texture;
+  bool srgb;
+};
+inline constexpr std::size_t kMaterialTextureSlots = 13;
+std::array<MaterialTextureSlot, kMaterialTextureSlots> materialTextureSlots(
+    const Material& material);
 
 struct SceneCamera {
   std::string name;
@@ -113,6 +200,8 @@ struct Scene {
   std::vector<std::string> warnings;  // repairs made while loading (shown in the result)
 
   std::size_t triangleCount() const;
+  // Lines and points as drawn (instances count), for the result's statistics.
+  std::size_t lineAndPointPrimitiveCount() const;
   void computeBounds();
 };
 

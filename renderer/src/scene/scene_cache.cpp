@@ -37,7 +37,27 @@ SceneCache::SceneCache(const RendererOptions& options) : options_(options) {
 
 SceneCache::~SceneCache() = default;
 
-std::string SceneCache::keyFor(const SceneSource& source) const {
+namespace {
+
+// The options' part of a cache key ("" for the defaults, so default keys stay as they were).
+std::string optionsKey(const SceneLoadOptions& options) {
+  std::string key;
+  if (options.animation) {
+    key += fmt::format("|animation={}@{}", options.animation->index, options.animation->time);
+  }
+  if (!options.materialVariant.empty()) key += "|variant=" + options.materialVariant;
+  if (options.ignoreUnsupportedExtensions) key += "|ignore-unsupported";
+  return key;
+}
+
+}  // namespace
+
+std::string SceneCache::keyFor(const SceneSource& source, const SceneLoadOptions& options) const {
+  const std::string base = sourceKey(source);
+  return base.empty() || source.kind == SceneSource::Kind::Demo ? base : base + optionsKey(options);
+}
+
+std::string SceneCache::sourceKey(const SceneSource& source) const {
   switch (source.kind) {
     case SceneSource::Kind::Demo:
       return "demo";
@@ -65,19 +85,19 @@ std::string SceneCache::keyFor(const SceneSource& source) const {
   return {};
 }
 
-Scene SceneCache::load(const SceneSource& source) {
+Scene SceneCache::load(const SceneSource& source, const SceneLoadOptions& options) {
   if (source.kind == SceneSource::Kind::Demo) return makeDemoScene();
   SceneLoadLimits limits;
   limits.maxTriangles = options_.maxTriangles;
   limits.maxTextureSize = options_.maxTextureSize;
   limits.maxTextureBytes = options_.maxTextureBytes;
-  if (worker_) return worker_->load({source, options_.assetRoot, limits});
-  return loadSceneSource(source, options_.assetRoot, limits);
+  if (worker_) return worker_->load({source, options_.assetRoot, limits, options});
+  return loadSceneSource(source, options_.assetRoot, limits, options);
 }
 
-SceneCache::Lookup SceneCache::get(const SceneSource& source) {
+SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOptions& options) {
   Lookup lookup;
-  const std::string key = keyFor(source);
+  const std::string key = keyFor(source, options);
   for (auto it = slots_.begin(); it != slots_.end(); ++it) {
     if (it->key != key) continue;
     slots_.splice(slots_.begin(), slots_, it);
@@ -90,7 +110,7 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source) {
   ++misses_;
   const Stopwatch loadTimer;
   auto entry = std::make_shared<CachedScene>();
-  entry->scene = load(source);
+  entry->scene = load(source, options);
   lookup.loadMs = loadTimer.elapsedMs();
   const Stopwatch uploadTimer;
   entry->gpu = std::make_unique<GpuScene>(entry->scene, maxAnisotropy_);

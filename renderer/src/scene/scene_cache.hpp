@@ -11,6 +11,7 @@
 
 #include "lgh/renderer_options.hpp"
 #include "lgh/scene_cache_stats.hpp"
+#include "scene/gltf/gltf_loader.hpp"
 #include "scene/gpu_scene.hpp"
 #include "scene/scene.hpp"
 #include "vk/shadow_tracer.hpp"
@@ -53,16 +54,18 @@ class SceneCache {
     double loadMs = 0.0;
     double uploadMs = 0.0;
   };
-  // Loads on a miss; throws lgh::Error for bad assets (nothing is cached then).
-  Lookup get(const SceneSource& source);
+  // Loads on a miss; throws lgh::Error for bad assets (nothing is cached then). The options (pose,
+  // material variant, extension tolerance) are part of the key: each pose is its own entry.
+  Lookup get(const SceneSource& source, const SceneLoadOptions& options = {});
   SceneCacheStats stats() const;
 
   // Content key of a source ("" when it cannot be keyed; then it is never cached).
-  std::string keyFor(const SceneSource& source) const;
+  std::string keyFor(const SceneSource& source, const SceneLoadOptions& options = {}) const;
 
  private:
   // In the scene parser worker when the options name one (untrusted bytes never parsed here).
-  Scene load(const SceneSource& source);
+  Scene load(const SceneSource& source, const SceneLoadOptions& options);
+  std::string sourceKey(const SceneSource& source) const;
   void evictOverBudget();
 
   RendererOptions options_;

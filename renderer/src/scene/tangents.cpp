@@ -1,6 +1,5 @@
 #include "scene/tangents.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 namespace lgh {
@@ -33,58 +32,6 @@ glm::vec3 areaNormal(const Primitive& primitive, const Triangle& triangle) {
   const glm::vec3& p1 = primitive.vertices[triangle.index[1]].position;
   const glm::vec3& p2 = primitive.vertices[triangle.index[2]].position;
   return glm::cross(p1 - p0, p2 - p0);
-}
-
-float cornerAngle(const glm::vec3& corner, const glm::vec3& a, const glm::vec3& b) {
-  const glm::vec3 u = a - corner;
-  const glm::vec3 v = b - corner;
-  if (!isUsableDirection(u) || !isUsableDirection(v)) return 0.0F;
-  const float cosine = glm::dot(glm::normalize(u), glm::normalize(v));
-  return std::acos(std::clamp(cosine, -1.0F, 1.0F));
-}
-
-glm::vec2 uvOf(const Vertex& vertex, int uvSet) { return uvSet == 1 ? vertex.uv1 : vertex.uv0; }
-
-// Per-vertex sums of the triangle tangent (dP/du) and bitangent (-dP/dv) directions.
-struct TangentSums {
-  std::vector<glm::vec3> tangent;
-  std::vector<glm::vec3> bitangent;
-};
-
-void accumulateTriangle(const Primitive& primitive, const Triangle& triangle, int uvSet,
-                        TangentSums& sums) {
-  const Vertex* v[3];
-  for (int k = 0; k < 3; ++k) v[k] = &primitive.vertices[triangle.index[k]];
-  const glm::vec3 e1 = v[1]->position - v[0]->position;
-  const glm::vec3 e2 = v[2]->position - v[0]->position;
-  const glm::vec2 d1 = uvOf(*v[1], uvSet) - uvOf(*v[0], uvSet);
-  const glm::vec2 d2 = uvOf(*v[2], uvSet) - uvOf(*v[0], uvSet);
-  const float det = d1.x * d2.y - d2.x * d1.y;
-  // Degenerate (or NaN) UVs: this triangle says nothing about the tangent frame.
-  if (!(std::abs(det) > 1e-20F)) return;
-  const glm::vec3 dPdu = (e1 * d2.y - e2 * d1.y) / det;
-  const glm::vec3 dPdv = (e2 * d1.x - e1 * d2.x) / det;
-  if (!isUsableDirection(dPdu)) return;
-  const glm::vec3 tangent = glm::normalize(dPdu);
-  const glm::vec3 bitangent = isUsableDirection(dPdv) ? -glm::normalize(dPdv) : glm::vec3(0.0F);
-  // Corner-angle weights, as MikkTSpace uses: a vertex's frame does not depend on how finely the
-  // surface around it is triangulated.
-  for (int k = 0; k < 3; ++k) {
-    const float weight =
-        cornerAngle(v[k]->position, v[(k + 1) % 3]->position, v[(k + 2) % 3]->position);
-    sums.tangent[triangle.index[k]] += tangent * weight;
-    sums.bitangent[triangle.index[k]] += bitangent * weight;
-  }
-}
-
-glm::vec4 finishTangent(const glm::vec3& normal, const glm::vec3& tangentSum,
-                        const glm::vec3& bitangentSum) {
-  const glm::vec3 n = isUsableDirection(normal) ? glm::normalize(normal) : glm::vec3(0, 1, 0);
-  const glm::vec3 orthogonal = tangentSum - n * glm::dot(n, tangentSum);  // Gram-Schmidt
-  if (!isUsableDirection(orthogonal)) return glm::vec4(anyPerpendicular(n), 1.0F);
-  const glm::vec3 t = glm::normalize(orthogonal);
-  const float handedness = glm::dot(glm::cross(n, t), bitangentSum) < 0.0F ? -1.0F : 1.0F;
-  return glm::vec4(t, handedness);
 }
 
 }  // namespace
@@ -144,19 +91,6 @@ std::size_t repairNormals(Primitive& primitive) {
 void generateSmoothNormals(Primitive& primitive) {
   for (Vertex& vertex : primitive.vertices) vertex.normal = glm::vec3(0.0F);
   repairNormals(primitive);
-}
-
-void generateTangents(Primitive& primitive, int uvSet) {
-  TangentSums sums;
-  sums.tangent.assign(primitive.vertices.size(), glm::vec3(0.0F));
-  sums.bitangent.assign(primitive.vertices.size(), glm::vec3(0.0F));
-  forEachTriangle(primitive, [&](const Triangle& triangle) {
-    accumulateTriangle(primitive, triangle, uvSet, sums);
-  });
-  for (std::size_t i = 0; i < primitive.vertices.size(); ++i) {
-    Vertex& vertex = primitive.vertices[i];
-    vertex.tangent = finishTangent(vertex.normal, sums.tangent[i], sums.bitangent[i]);
-  }
 }
 
 }  // namespace lgh

@@ -1,10 +1,5 @@
-// Normal and tangent generation for primitives whose asset leaves them out (or gives broken ones).
-//
-// Tangents are NOT full MikkTSpace: they are per-triangle UV-derivative tangents, accumulated per
-// vertex weighted by the triangle's corner angle, Gram-Schmidt orthogonalised against the vertex
-// normal. For the simple cases (planar or smoothly curved patches with non-mirrored, non-degenerate
-// UVs) this matches MikkTSpace's result; at UV seams and mirrored islands that share vertices it
-// can differ, because MikkTSpace splits such vertices and this does not.
+// Normal generation for primitives whose asset leaves them out (or gives broken ones), and the
+// small vector helpers the tangent code shares. Tangents come from MikkTSpace (mikktspace.hpp).
 //
 // Conventions (glTF): tangent.xyz points along increasing u; the bitangent is
 // cross(normal, tangent.xyz) * tangent.w and points along DEcreasing v, i.e. towards the top of the
@@ -36,10 +31,5 @@ std::size_t repairNormals(Primitive& primitive);
 
 // Area-weighted smooth normals for every vertex (the repair above, applied to all vertices).
 void generateSmoothNormals(Primitive& primitive);
-
-// Tangents for every vertex from the UV set `uvSet` (0 or 1) and the vertex normals, which must
-// already be unit length. Never produces NaN: a vertex whose UVs are degenerate gets
-// anyPerpendicular(normal) with w = +1.
-void generateTangents(Primitive& primitive, int uvSet = 0);
 
 }  // namespace lgh

@@ -44,6 +44,23 @@ bool importBuffer(const vk::SharedBuffer& shared, gl::MemoryObject& memory, gl::
   return true;
 }
 
+// Silences the GL debug output while interop is tried: a failed import is an expected answer
+// (Mesa) and is logged once as a decision, not as a GL error.
+class QuietGlDebugOutput {
+ public:
+  QuietGlDebugOutput() : wasOn_(glIsEnabled(GL_DEBUG_OUTPUT) == GL_TRUE) {
+    if (wasOn_) glDisable(GL_DEBUG_OUTPUT);
+  }
+  ~QuietGlDebugOutput() {
+    if (wasOn_) glEnable(GL_DEBUG_OUTPUT);
+  }
+  QuietGlDebugOutput(const QuietGlDebugOutput&) = delete;
+  QuietGlDebugOutput& operator=(const QuietGlDebugOutput&) = delete;
+
+ private:
+  bool wasOn_;
+};
+
 bool glHasMemoryInterop() {
   const gl::Api& api = gl::api("GL_EXT_memory_object_fd");
   return api.EXT_memory_object != 0 && api.EXT_memory_object_fd != 0;
@@ -94,6 +111,7 @@ void RayBatchTransport::decide(const vk::RayBatchShape& shape) {
 }
 
 bool RayBatchTransport::importAll(const vk::RayBuffers& buffers) {
+  const QuietGlDebugOutput quiet;
   const std::array<std::pair<const vk::SharedBuffer*, Imported*>, 3> parts{{
       {&buffers.origins, &origins_},
       {&buffers.targets, &targets_},

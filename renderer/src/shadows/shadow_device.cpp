@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "context/container_hints.hpp"
 #include "gl/gl_api.hpp"
 #include "lgh/error.hpp"
 
@@ -48,10 +49,30 @@ vk::ShadowTracer* ShadowDevice::tracer() {
         info.deviceName, info.driverName, info.rayQuery, info.rayTracingPipeline,
         info.externalMemoryFd, info.externalSemaphoreFd, info.createMs);
   } catch (const Error& error) {
-    reason_ = error.message();
+    reason_ = error.message() + vulkanDriverHints();
     spdlog::warn("shadows: unavailable: {}", reason_);
   }
   return tracer_.get();
+}
+
+ShadowInfo ShadowDevice::info(const std::string& transport) const {
+  ShadowInfo info;
+  if (!tracer_) {
+    info.status = tried_ ? "unavailable" : "pending";
+    info.reason = reason_;
+    return info;
+  }
+  const vk::TracerInfo& tracer = tracer_->info();
+  info.status = "ready";
+  info.deviceName = tracer.deviceName;
+  info.driverName = tracer.driverName;
+  info.apiVersion = tracer.apiVersion;
+  info.rayQuery = tracer.rayQuery;
+  info.rayTracingPipeline = tracer.rayTracingPipeline;
+  info.externalMemory = tracer.externalMemoryFd;
+  info.externalSemaphores = tracer.externalSemaphoreFd;
+  info.transport = transport;
+  return info;
 }
 
 void ShadowDevice::reset(const std::string& why) {

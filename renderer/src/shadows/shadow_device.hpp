@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "lgh/shadow_info.hpp"
 #include "vk/shadow_tracer.hpp"
 
 namespace lgh {
@@ -23,6 +24,8 @@ class ShadowDevice {
   // Needs the GL context current on the calling thread (it reads the GL device UUID).
   vk::ShadowTracer* tracer();
   const std::string& unavailableReason() const { return reason_; }
+  // The tracer's state for reports; `transport`: how the frames hand rays over ("" before any).
+  ShadowInfo info(const std::string& transport) const;
   // Changes whenever a new tracer is created: acceleration structures of an older epoch belong
   // to a device that is gone and must be built again.
   std::uint64_t epoch() const { return epoch_; }

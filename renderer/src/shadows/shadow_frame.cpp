@@ -119,26 +119,69 @@ void ShadowFrame::traceRays(const ShadowFrameInputs& inputs, vk::ShadowTracer& t
                             vk::TracePath path, const CachedScene& scene, const FrameTargets& frame,
                             gl::GpuTimer& timer, FrameReport& report) {
   const vk::TraceScene& accel = traceScene(tracer, scene);
-  if (!transport_ || transportEpoch_ != device_->epoch()) {
-    transport_ = std::make_unique<RayBatchTransport>(tracer);
-    transportEpoch_ = device_->epoch();
-  }
+  RayBatchTransport& transport = transportFor(tracer);
   const vk::RayBatchShape shape{static_cast<std::uint32_t>(frame.width),
                                 static_cast<std::uint32_t>(frame.height),
                                 static_cast<std::uint32_t>(layout_.raysPerPixel())};
-  buffers_ = transport_->prepare(shape);
+  buffers_ = transport.prepare(shape);
   const float offset = surfaceOffset(scene.scene);
   {
     gl::ScopedGpuPass pass(timer, "shadow ray setup");
-    setup_.run({layout_, inputs.lights, inputs.lghSamples, offset, inputs.seed ^ kDirectSeedSalt},
-               frame, buffers_.origins, buffers_.targets);
+    setup().run({layout_, inputs.lights, inputs.lghSamples, offset, inputs.seed ^ kDirectSeedSalt},
+                frame, buffers_.origins, buffers_.targets);
   }
   vk::TraceParams params;
   params.tMin = offset;
   params.endEpsilon = kEndEpsilon;
-  transferMs_ = transport_->trace(accel, path, shape, params);
+  transferMs_ = transport.trace(accel, path, shape, params);
   traced_ = true;
-  report.decide("shadow_transport", transport_->name());
+  report.decide("shadow_transport", transport.name());
+}
+
+ShadowRaySetupPass& ShadowFrame::setup() {
+  if (!setup_) setup_.emplace();
+  return *setup_;
+}
+
+RayBatchTransport& ShadowFrame::transportFor(vk::ShadowTracer& tracer) {
+  if (!transport_ || transportEpoch_ != device_->epoch()) {
+    transport_ = std::make_unique<RayBatchTransport>(tracer);
+    transportEpoch_ = device_->epoch();
+  }
+  return *transport_;
+}
+
+GLuint ShadowFrame::traceToPointLights(const ShadowSettings& settings, GLuint pointLights,
+                                       int first, int count, const CachedScene& scene,
+                                       const FrameTargets& frame) {
+  if (settings.mode == ShadowMode::Off) {
+    throw Error(ErrorCode::Invalid, "a shadowed reference needs shadows", "/settings/shadows");
+  }
+  FrameReport ignored;
+  ShadowSettings required = settings;
+  required.mode = ShadowMode::On;
+  vk::ShadowTracer* tracer = tracerFor(required, ignored);
+  const vk::TracePath path = choosePath(*tracer, settings.tracing);
+  try {
+    const vk::TraceScene& accel = traceScene(*tracer, scene);
+    RayBatchTransport& transport = transportFor(*tracer);
+    const vk::RayBatchShape shape{static_cast<std::uint32_t>(frame.width),
+                                  static_cast<std::uint32_t>(frame.height),
+                                  static_cast<std::uint32_t>(count)};
+    const RayBatchTransport::GlBuffers buffers = transport.prepare(shape);
+    const float offset = surfaceOffset(scene.scene);
+    setup().runToPointLights(pointLights, first, count, offset, frame, buffers.origins,
+                             buffers.targets);
+    vk::TraceParams params;
+    params.tMin = offset;
+    params.endEpsilon = kEndEpsilon;
+    transport.trace(accel, path, shape, params);
+    return buffers.visibility;
+  } catch (const Error& error) {
+    transport_.reset();
+    if (device_ != nullptr) device_->reset(error.message());
+    throw;
+  }
 }
 
 GLuint ShadowFrame::filterLgh(int iterations, const CameraMatrices& camera,

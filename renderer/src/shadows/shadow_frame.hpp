@@ -1,5 +1,5 @@
-// The shadows of one frame (DESIGN.md "Data flow" steps 8-9; docs/SHADOWS.md), between the LGH
-// lighting (which picked k shadow samples per pixel) and the direct lighting:
+// The shadows of one frame (docs/ARCHITECTURE.md "One frame", steps 4-6; docs/SHADOWS.md), after
+// the LGH lighting (which picked k shadow samples per pixel) and the direct lighting:
 //   inputs:  ShadowSettings, the frame's lights (buffer + count), the LGH's samples (when it
 //            ran), the scene (its acceleration structures are built here on first use), the
 //            G-buffer
@@ -61,6 +61,16 @@ class ShadowFrame {
   GLuint filterLgh(int iterations, const CameraMatrices& camera, const FrameTargets& frame,
                    gl::GpuTimer& timer);
 
+  // The shadowed brute-force reference's rays: from every pixel to each of `count` point lights
+  // (PointLight SSBO, count <= vk::kMaxRaysPerPixel) from `first` on. Returns the visibility
+  // buffer (bit r: light first + r), valid until the next trace. Throws like trace() when
+  // shadows are off or cannot be traced.
+  GLuint traceToPointLights(const ShadowSettings& settings, GLuint pointLights, int first,
+                            int count, const CachedScene& scene, const FrameTargets& frame);
+
+  // How rays reach Vulkan ("interop", "interop-finish", "staging"); "" before the first batch.
+  std::string transportName() const { return transport_ ? transport_->name() : std::string(); }
+
   // Adds the Vulkan rows (acceleration structures, rays) and the CPU transfer row.
   void collectTimings(FrameReport& report);
 
@@ -69,6 +79,7 @@ class ShadowFrame {
   vk::TracePath choosePath(vk::ShadowTracer& tracer, ShadowTracing requested) const;
   const vk::TraceScene& traceScene(vk::ShadowTracer& tracer, const CachedScene& scene);
   ShadowRayLayout budget(const ShadowFrameInputs& inputs, FrameReport& report) const;
+  RayBatchTransport& transportFor(vk::ShadowTracer& tracer);
   void traceRays(const ShadowFrameInputs& inputs, vk::ShadowTracer& tracer, vk::TracePath path,
                  const CachedScene& scene, const FrameTargets& frame, gl::GpuTimer& timer,
                  FrameReport& report);
@@ -76,7 +87,9 @@ class ShadowFrame {
   ShadowDevice* device_;
   std::unique_ptr<RayBatchTransport> transport_;
   std::uint64_t transportEpoch_ = 0;  // the ShadowDevice epoch transport_ belongs to
-  ShadowRaySetupPass setup_;
+  ShadowRaySetupPass& setup();        // compiled by the first shadowed frame, not at start-up
+
+  std::optional<ShadowRaySetupPass> setup_;
   std::optional<ShadowFilterPass> filter_;
   ShadowRayLayout layout_;
   RayBatchTransport::GlBuffers buffers_;

@@ -15,8 +15,8 @@ const char* clockName(TimingRow::Clock clock) {
 
 }  // namespace
 
-void TimingTable::add(std::string name, TimingRow::Clock clock, double ms) {
-  rows.push_back({std::move(name), clock, ms});
+void TimingTable::add(std::string name, TimingRow::Clock clock, double ms, int depth) {
+  rows.push_back({std::move(name), clock, ms, depth});
 }
 
 double TimingTable::get(const std::string& name) const {
@@ -28,7 +28,7 @@ double TimingTable::get(const std::string& name) const {
 double TimingTable::gpuTotal() const {
   double total = 0.0;
   for (const TimingRow& row : rows) {
-    if (row.clock == TimingRow::Clock::Gpu) total += row.milliseconds;
+    if (row.clock == TimingRow::Clock::Gpu && row.depth == 0) total += row.milliseconds;
   }
   return total;
 }
@@ -42,14 +42,17 @@ double TimingTable::gpuTotal() const {
 std::string TimingTable::format() const {
   constexpr std::string_view kTotalLabel = "total gpu";
   std::size_t nameWidth = std::string_view("pass").size();
-  for (const TimingRow& row : rows) nameWidth = std::max(nameWidth, row.name.size());
+  for (const TimingRow& row : rows) {
+    nameWidth = std::max(nameWidth, row.name.size() + 2 * static_cast<std::size_t>(row.depth));
+  }
   nameWidth = std::max(nameWidth, kTotalLabel.size());
 
   constexpr int kMsWidth = 10;
   std::string text =
       fmt::format("{:<{}}  {:<5}  {:>{}}\n", "pass", nameWidth, "clock", "ms", kMsWidth);
   for (const TimingRow& row : rows) {
-    text += fmt::format("{:<{}}  {:<5}  {:>{}.3f}\n", row.name, nameWidth, clockName(row.clock),
+    const std::string name = std::string(2 * static_cast<std::size_t>(row.depth), ' ') + row.name;
+    text += fmt::format("{:<{}}  {:<5}  {:>{}.3f}\n", name, nameWidth, clockName(row.clock),
                         row.milliseconds, kMsWidth);
   }
   text +=
@@ -60,8 +63,10 @@ std::string TimingTable::format() const {
 nlohmann::json TimingTable::toJson() const {
   nlohmann::json array = nlohmann::json::array();
   for (const TimingRow& row : rows) {
-    array.push_back(
-        {{"pass", row.name}, {"clock", clockName(row.clock)}, {"ms", row.milliseconds}});
+    nlohmann::json entry = {
+        {"pass", row.name}, {"clock", clockName(row.clock)}, {"ms", row.milliseconds}};
+    if (row.depth > 0) entry["depth"] = row.depth;
+    array.push_back(std::move(entry));
   }
   return array;
 }

@@ -1,7 +1,7 @@
-// The Vulkan side of shadows (DESIGN.md "Data flow" steps 2 and 8; docs/SHADOWS.md): the Vulkan
-// device that is the GL device, the acceleration structures of a scene, and shadow rays traced
-// for a batch of pixels by ray query (a compute shader) or by a ray-tracing pipeline (raygen +
-// miss), with identical results. Runs in the renderer's process, on the render thread.
+// The Vulkan side of shadows (docs/ARCHITECTURE.md "One frame", step 4; docs/SHADOWS.md): the
+// Vulkan device that is the GL device, the acceleration structures of a scene, and shadow rays
+// traced for a batch of pixels by ray query (a compute shader) or by a ray-tracing pipeline (raygen
+// + miss), with identical results. Runs in the renderer's process, on the render thread.
 //
 // This header sees neither Vulkan nor GL: the frame code (GL) hands rays over in buffers that
 // Vulkan owns and shares with GL, either as exported memory that GL imports (interop: nothing

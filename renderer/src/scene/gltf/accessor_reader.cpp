@@ -66,7 +66,18 @@ bool typeAllowed(Semantic semantic, int type) {
     case Semantic::Color:
       return type == TINYGLTF_TYPE_VEC3 || type == TINYGLTF_TYPE_VEC4;
     case Semantic::Indices:
+    case Semantic::AnimationInput:
       return type == TINYGLTF_TYPE_SCALAR;
+    case Semantic::MorphDelta:
+      return type == TINYGLTF_TYPE_VEC3;
+    case Semantic::Joints:
+    case Semantic::Weights:
+      return type == TINYGLTF_TYPE_VEC4;
+    case Semantic::Matrix:
+      return type == TINYGLTF_TYPE_MAT4;
+    case Semantic::AnimationOutput:
+      return type == TINYGLTF_TYPE_SCALAR || type == TINYGLTF_TYPE_VEC3 ||
+             type == TINYGLTF_TYPE_VEC4;
   }
   return false;
 }
@@ -96,6 +107,18 @@ bool formatAllowed(Semantic semantic, int componentType, bool normalized, bool q
       return !normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                              ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
                              ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+    case Semantic::MorphDelta:
+      return isFloat || (quantized && (signedNormalized || smallInteger));
+    case Semantic::Joints:
+      return !normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                             ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+    case Semantic::Weights:
+      return isFloat || unsignedNormalized;
+    case Semantic::Matrix:
+    case Semantic::AnimationInput:
+      return isFloat;
+    case Semantic::AnimationOutput:
+      return isFloat || unsignedNormalized || signedNormalized;
   }
   return false;
 }
@@ -113,6 +136,18 @@ const char* allowedFormats(Semantic semantic) {
       return "VEC3/VEC4 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT";
     case Semantic::Indices:
       return "SCALAR of UNSIGNED_BYTE/UNSIGNED_SHORT/UNSIGNED_INT";
+    case Semantic::MorphDelta:
+      return "VEC3 of FLOAT";
+    case Semantic::Joints:
+      return "VEC4 of UNSIGNED_BYTE/UNSIGNED_SHORT";
+    case Semantic::Weights:
+      return "VEC4 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT";
+    case Semantic::Matrix:
+      return "MAT4 of FLOAT";
+    case Semantic::AnimationInput:
+      return "SCALAR of FLOAT";
+    case Semantic::AnimationOutput:
+      return "SCALAR/VEC3/VEC4 of FLOAT or normalized integers";
   }
   return "?";
 }

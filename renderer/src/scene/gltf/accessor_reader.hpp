@@ -16,7 +16,20 @@
 namespace lgh::gltf {
 
 // What an accessor is read as, which decides the formats glTF allows for it.
-enum class Semantic { Position, Normal, Tangent, TexCoord, Color, Indices };
+enum class Semantic {
+  Position,
+  Normal,
+  Tangent,
+  TexCoord,
+  Color,
+  Indices,
+  MorphDelta,       // a morph target's POSITION / NORMAL / TANGENT displacement (VEC3)
+  Joints,           // JOINTS_n
+  Weights,          // WEIGHTS_n
+  Matrix,           // inverseBindMatrices (MAT4 of FLOAT)
+  AnimationInput,   // an animation sampler's times (SCALAR of FLOAT)
+  AnimationOutput,  // an animation sampler's values (translation, rotation, scale, weights)
+};
 
 class AccessorReader {
  public:

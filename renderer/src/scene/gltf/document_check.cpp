@@ -374,7 +374,9 @@ class DocumentChecker {
       const std::uint64_t byteLength = unsignedOr(buffers[i], "byteLength", 0);
       const json& uri = member(buffers[i], "uri");
       if (!uri.is_string()) {
-        checkGlbBuffer(i, byteLength, pointer);
+        // EXT_meshopt_compression's fallback buffers hold no data: only decoded bufferViews lie
+        // in them (geometry_decompression fills those).
+        if (!isMeshoptFallback(buffers[i])) checkGlbBuffer(i, byteLength, pointer);
         continue;
       }
       const std::string_view text = uri.get_ref<const std::string&>();
@@ -395,6 +397,16 @@ class DocumentChecker {
              fmt::format("has a data: URI of {} bytes, but byteLength {}", *decoded, byteLength));
       }
     }
+  }
+
+  static bool isMeshoptFallback(const json& buffer) {
+    const json& extensions = member(buffer, "extensions");
+    for (const char* name : {"EXT_meshopt_compression", "KHR_meshopt_compression"}) {
+      const json& extension = member(extensions, name);
+      const json& fallback = member(extension, "fallback");
+      if (fallback.is_boolean() && fallback.get<bool>()) return true;
+    }
+    return false;
   }
 
   void checkGlbBuffer(std::size_t index, std::uint64_t byteLength,
@@ -505,6 +517,14 @@ class DocumentChecker {
       const json& primitives = member(meshes[m], "primitives");
       for (std::size_t p = 0; p < primitives.size(); ++p) {
         const std::string pointer = fmt::format("/meshes/{}/primitives/{}", m, p);
+        // The validator's MESH_PRIMITIVES_UNEQUAL_TARGETS_COUNT: morph weights apply per mesh.
+        const std::size_t targets = member(primitives[p], "targets").size();
+        const std::size_t firstTargets = member(primitives[0], "targets").size();
+        if (targets != firstTargets) {
+          fail(pointer, fmt::format("has {} morph target(s), but /meshes/{}/primitives/0 has {}: "
+                                    "every primitive of a mesh must have the same number",
+                                    targets, m, firstTargets));
+        }
         const json& attributes = member(primitives[p], "attributes");
         checkSemanticSets(attributes, pointer + "/attributes");
         checkAttributeCounts(attributes, pointer + "/attributes");

@@ -90,20 +90,25 @@ GlbChunks readGlbContainer(const std::vector<std::uint8_t>& bytes, const LoadCon
   return chunks;
 }
 
-std::vector<std::uint8_t> withoutUnknownChunks(const std::vector<std::uint8_t>& bytes,
-                                               const GlbChunks& chunks) {
-  const auto jsonStart =
-      static_cast<std::size_t>(chunks.json.data() - reinterpret_cast<const char*>(bytes.data()));
-  std::vector<std::uint8_t> clean(
-      bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(jsonStart + chunks.json.size()));
+std::vector<std::uint8_t> rebuiltGlb(const std::vector<std::uint8_t>& bytes,
+                                     const GlbChunks& chunks, std::string_view json) {
+  std::vector<std::uint8_t> glb(bytes.begin(), bytes.begin() + kHeaderBytes);
+  const auto put32 = [&glb](std::size_t value) {
+    for (unsigned i = 0; i < 4; ++i) glb.push_back(static_cast<std::uint8_t>(value >> (8U * i)));
+  };
+  const std::size_t padding = (4 - json.size() % 4) % 4;  // spaces, as the format asks
+  put32(json.size() + padding);
+  put32(kJsonChunk);
+  glb.insert(glb.end(), json.begin(), json.end());
+  glb.insert(glb.end(), padding, static_cast<std::uint8_t>(' '));
   if (chunks.binBytes > 0) {
     const auto binHeader = static_cast<std::ptrdiff_t>(chunks.binOffset - kChunkHeaderBytes);
-    clean.insert(clean.end(), bytes.begin() + binHeader,
-                 bytes.begin() + static_cast<std::ptrdiff_t>(chunks.binOffset + chunks.binBytes));
+    glb.insert(glb.end(), bytes.begin() + binHeader,
+               bytes.begin() + static_cast<std::ptrdiff_t>(chunks.binOffset + chunks.binBytes));
   }
-  const auto length = static_cast<std::uint32_t>(clean.size());
-  for (int i = 0; i < 4; ++i) clean[8 + i] = static_cast<std::uint8_t>(length >> (8U * i));
-  return clean;
+  const std::size_t length = glb.size();
+  for (unsigned i = 0; i < 4; ++i) glb[8 + i] = static_cast<std::uint8_t>(length >> (8U * i));
+  return glb;
 }
 
 }  // namespace lgh::gltf

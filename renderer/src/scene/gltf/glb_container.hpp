@@ -20,7 +20,7 @@ struct GlbChunks {
   std::size_t binOffset = 0;  // the BIN chunk's payload (binBytes 0: no BIN chunk)
   std::size_t binBytes = 0;
   // Chunks of unknown types after those two, which the specification says to ignore (tinygltf
-  // refuses them; withoutUnknownChunks makes the copy it gets).
+  // refuses them; rebuiltGlb makes the copy it gets).
   std::vector<std::uint32_t> unknownChunkTypes;
 };
 
@@ -29,8 +29,9 @@ struct GlbChunks {
 // not JSON, a BIN chunk that is not the second.
 GlbChunks readGlbContainer(const std::vector<std::uint8_t>& bytes, const LoadContext& ctx);
 
-// The GLB with only its JSON and BIN chunks (and its total length to match).
-std::vector<std::uint8_t> withoutUnknownChunks(const std::vector<std::uint8_t>& bytes,
-                                               const GlbChunks& chunks);
+// The GLB with `json` as its JSON chunk (padded with spaces), its BIN chunk if any and no other
+// chunks, and its total length to match.
+std::vector<std::uint8_t> rebuiltGlb(const std::vector<std::uint8_t>& bytes,
+                                     const GlbChunks& chunks, std::string_view json);
 
 }  // namespace lgh::gltf

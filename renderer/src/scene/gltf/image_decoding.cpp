@@ -13,6 +13,7 @@
 #include "lgh/error.hpp"
 #include "lgh/image.hpp"
 #include "scene/gltf/load_context.hpp"
+#include "scene/gltf/webp_decoding.hpp"
 
 namespace lgh::gltf {
 namespace {
@@ -60,6 +61,7 @@ std::optional<std::pair<std::uint32_t, std::uint32_t>> sniffImageSize(const std:
     return std::make_pair(readBigEndian(bytes + 16, 4), readBigEndian(bytes + 20, 4));
   }
   if (size >= 4 && bytes[0] == 0xFF && bytes[1] == 0xD8) return jpegSize(bytes, size);
+  if (isWebp(bytes, size)) return webpSize(bytes, size);
   return std::nullopt;
 }
 
@@ -88,7 +90,8 @@ Image8 decodeTexture(LoadContext& ctx, const std::uint8_t* bytes, std::size_t si
   }
   Image8 image;
   try {
-    image = image_io::decodeTextureRgba8(bytes, size, what);
+    image = isWebp(bytes, size) ? decodeWebp(ctx, bytes, size, what)
+                                : image_io::decodeTextureRgba8(bytes, size, what);
   } catch (const Error& error) {
     if (error.code() == ErrorCode::TooLarge) throw;
     invalid(ctx, fmt::format("{} could not be decoded: {}", what, error.message()));

@@ -25,6 +25,7 @@ enum class SideFiles { Directory, Memory, None };
 struct LoadContext {
   std::string displayName;
   SceneLoadLimits limits;
+  SceneLoadOptions options;
   SideFiles sideFiles = SideFiles::None;
   std::filesystem::path root;  // Directory: the asset root
   // Directory, Memory: the model's folder, relative (to root / to the upload)

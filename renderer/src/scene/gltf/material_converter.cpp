@@ -9,6 +9,7 @@
 
 #include "scene/gltf/image_decoding.hpp"
 #include "scene/gltf/side_files.hpp"
+#include "scene/gltf/texture_transform.hpp"
 
 namespace lgh::gltf {
 
@@ -61,18 +62,37 @@ Material MaterialConverter::convert(int index) {
   material.alphaMode = alphaMode(source.alphaMode, owner);
   material.alphaCutoff = std::max(finiteOr(source.alphaCutoff, 0.5F), 0.0F);
   material.doubleSided = source.doubleSided;
-  material.baseColorTexture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
-                                      owner + "/pbrMetallicRoughness/baseColorTexture");
+  material.baseColorTexture =
+      texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+              pbr.baseColorTexture.extensions, owner + "/pbrMetallicRoughness/baseColorTexture");
   material.metallicRoughnessTexture =
       texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+              pbr.metallicRoughnessTexture.extensions,
               owner + "/pbrMetallicRoughness/metallicRoughnessTexture");
-  material.normalTexture =
-      texture(source.normalTexture.index, source.normalTexture.texCoord, owner + "/normalTexture");
-  material.occlusionTexture = texture(
-      source.occlusionTexture.index, source.occlusionTexture.texCoord, owner + "/occlusionTexture");
+  material.normalTexture = texture(source.normalTexture.index, source.normalTexture.texCoord,
+                                   source.normalTexture.extensions, owner + "/normalTexture");
+  material.occlusionTexture =
+      texture(source.occlusionTexture.index, source.occlusionTexture.texCoord,
+              source.occlusionTexture.extensions, owner + "/occlusionTexture");
   material.emissiveTexture = texture(source.emissiveTexture.index, source.emissiveTexture.texCoord,
-                                     owner + "/emissiveTexture");
+                                     source.emissiveTexture.extensions, owner + "/emissiveTexture");
+  readExtensions(source, owner, material);
   return material;
+}
+
+TextureRef MaterialConverter::textureFromValue(const tinygltf::Value& info,
+                                               const std::string& owner) {
+  if (!info.IsObject() || !info.Has("index") || !info.Get("index").IsInt()) return {};
+  const int index = info.Get("index").GetNumberAsInt();
+  const int texCoord = info.Has("texCoord") && info.Get("texCoord").IsInt()
+                           ? info.Get("texCoord").GetNumberAsInt()
+                           : 0;
+  tinygltf::ExtensionMap extensions;
+  if (info.Has("extensions") && info.Get("extensions").IsObject()) {
+    const tinygltf::Value& map = info.Get("extensions");
+    for (const std::string& key : map.Keys()) extensions.emplace(key, map.Get(key));
+  }
+  return texture(index, texCoord, extensions, owner);
 }
 
 void MaterialConverter::warnAboutUnusedFailures() {
@@ -106,26 +126,39 @@ AlphaMode MaterialConverter::alphaMode(const std::string& mode, const std::strin
   return AlphaMode::Opaque;
 }
 
-TextureRef MaterialConverter::texture(int textureIndex, int texCoord, const std::string& owner) {
+int MaterialConverter::textureImage(const tinygltf::Texture& texture) const {
+  const auto webp = texture.extensions.find("EXT_texture_webp");
+  if (webp != texture.extensions.end() && webp->second.Has("source") &&
+      webp->second.Get("source").IsInt()) {
+    return webp->second.Get("source").GetNumberAsInt();
+  }
+  return texture.source;
+}
+
+TextureRef MaterialConverter::texture(int textureIndex, int texCoord,
+                                      const tinygltf::ExtensionMap& extensions,
+                                      const std::string& owner) {
   if (textureIndex < 0) return {};
   if (static_cast<std::size_t>(textureIndex) >= model_.textures.size()) {
     invalid(ctx_,
             fmt::format("{}/index names texture {}, which does not exist", owner, textureIndex));
   }
   const tinygltf::Texture& source = model_.textures[static_cast<std::size_t>(textureIndex)];
-  if (source.source < 0) {
+  const int image = textureImage(source);
+  if (image < 0) {
     ctx_.warnings.push_back(
         fmt::format("{}: /textures/{} has no image in a supported format; "
                     "ignored",
                     owner, textureIndex));
     return {};
   }
-  if (static_cast<std::size_t>(source.source) >= model_.images.size()) {
-    invalid(ctx_, fmt::format("{}: /textures/{}/source names image {}, which does not exist", owner,
-                              textureIndex, source.source));
+  if (static_cast<std::size_t>(image) >= model_.images.size()) {
+    invalid(ctx_, fmt::format("{}: /textures/{} names image {}, which does not exist", owner,
+                              textureIndex, image));
   }
   TextureRef ref;
-  ref.image = sceneImage(source.source);
+  ref.image = sceneImage(image);
+  ref.transform = readTextureTransform(extensions, owner, ctx_, texCoord);
   ref.texCoord = texCoord;
   if (texCoord != 0 && texCoord != 1) {
     ctx_.warnings.push_back(

@@ -1,7 +1,9 @@
 // Materials and textures: glTF metallic-roughness materials -> lgh::Material, with factors
-// clamped to their ranges, KHR_materials_emissive_strength applied, and each texture resolved to
-// its decoded image (moved into Scene::images on first use) and sampler. An image a material uses
-// must have loaded; one that no material uses and that failed is dropped with a warning.
+// clamped to their ranges, the KHR_materials_* extensions read (material_extensions.cpp), and each
+// texture resolved to its decoded image (moved into Scene::images on first use), sampler and
+// KHR_texture_transform. A texture's image comes from EXT_texture_webp where the texture names
+// one, else from its source. An image a material uses must have loaded; one that no material uses
+// and that failed is dropped with a warning.
 #pragma once
 
 #include <map>
@@ -24,7 +26,13 @@ class MaterialConverter {
   // Decoded images move from ctx.images into scene.images as materials use them.
   MaterialConverter(const tinygltf::Model& model, LoadContext& ctx, Scene& scene);
 
+  // `variant`: the KHR_materials_variants variant the request chose (-1: none) decides nothing
+  // here; the primitive converter maps materials through it.
   Material convert(int index);
+
+  // A textureInfo given as JSON inside an extension (e.g. clearcoatTexture): index, texCoord,
+  // KHR_texture_transform.
+  TextureRef textureFromValue(const tinygltf::Value& info, const std::string& owner);
 
   // Images that failed to load but that no material used: dropped, with a warning.
   void warnAboutUnusedFailures();
@@ -35,7 +43,15 @@ class MaterialConverter {
 
   AlphaMode alphaMode(const std::string& mode, const std::string& owner) const;
 
-  TextureRef texture(int textureIndex, int texCoord, const std::string& owner);
+  TextureRef texture(int textureIndex, int texCoord, const tinygltf::ExtensionMap& extensions,
+                     const std::string& owner);
+
+  // The image a texture samples: EXT_texture_webp's source where given, else `source`; -1 none.
+  int textureImage(const tinygltf::Texture& texture) const;
+
+  // KHR_materials_* (clearcoat, sheen, specular, ior, transmission, volume, unlit).
+  void readExtensions(const tinygltf::Material& source, const std::string& owner,
+                      Material& material);
 
   Sampler sampler(int index, const std::string& owner) const;
 

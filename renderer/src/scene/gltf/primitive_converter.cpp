@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "scene/mikktspace.hpp"
 #include "scene/tangents.hpp"
 
 namespace lgh::gltf {
@@ -18,46 +19,90 @@ bool isFinite(const glm::vec4& v) {
 
 namespace {
 
-// Triangle lists from glTF's modes; winding as the spec's formulas.
-std::vector<std::uint32_t> toTriangleList(std::vector<std::uint32_t> indices, int mode) {
-  if (mode == TINYGLTF_MODE_TRIANGLES) return indices;
-  std::vector<std::uint32_t> list;
-  if (indices.size() < 3) return list;
-  list.reserve((indices.size() - 2) * 3);
-  for (std::size_t i = 0; i + 2 < indices.size(); ++i) {
-    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-      const std::size_t odd = i % 2;
-      list.insert(list.end(), {indices[i], indices[i + 1 + odd], indices[i + 2 - odd]});
-    } else {  // TRIANGLE_FAN
-      list.insert(list.end(), {indices[i + 1], indices[i + 2], indices[0]});
-    }
-  }
-  return list;
-}
-
-std::size_t triangleCountFor(std::size_t indexCount, int mode) {
-  if (mode == TINYGLTF_MODE_TRIANGLES) return indexCount / 3;
-  return indexCount >= 3 ? indexCount - 2 : 0;
-}
-
-const char* modeName(int mode) {
+Topology topologyOf(int mode) {
   switch (mode) {
     case TINYGLTF_MODE_POINTS:
-      return "POINTS";
+      return Topology::Points;
     case TINYGLTF_MODE_LINE:
-      return "LINES";
     case TINYGLTF_MODE_LINE_LOOP:
-      return "LINE_LOOP";
     case TINYGLTF_MODE_LINE_STRIP:
-      return "LINE_STRIP";
+      return Topology::Lines;
     default:
-      return "an unknown mode";
+      return Topology::Triangles;
   }
 }
 
-bool isTriangleMode(int mode) {
-  return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
-         mode == TINYGLTF_MODE_TRIANGLE_FAN;
+bool isKnownMode(int mode) {
+  return mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_TRIANGLE_FAN;
+}
+
+// Lists from glTF's modes: triangles with the winding of the spec's formulas, lines as pairs.
+std::vector<std::uint32_t> toList(std::vector<std::uint32_t> indices, int mode) {
+  std::vector<std::uint32_t> list;
+  switch (mode) {
+    case TINYGLTF_MODE_TRIANGLE_STRIP:
+    case TINYGLTF_MODE_TRIANGLE_FAN:
+      if (indices.size() < 3) return list;
+      list.reserve((indices.size() - 2) * 3);
+      for (std::size_t i = 0; i + 2 < indices.size(); ++i) {
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+          const std::size_t odd = i % 2;
+          list.insert(list.end(), {indices[i], indices[i + 1 + odd], indices[i + 2 - odd]});
+        } else {
+          list.insert(list.end(), {indices[i + 1], indices[i + 2], indices[0]});
+        }
+      }
+      return list;
+    case TINYGLTF_MODE_LINE_STRIP:
+    case TINYGLTF_MODE_LINE_LOOP:
+      if (indices.size() < 2) return list;
+      for (std::size_t i = 0; i + 1 < indices.size(); ++i) {
+        list.insert(list.end(), {indices[i], indices[i + 1]});
+      }
+      if (mode == TINYGLTF_MODE_LINE_LOOP) list.insert(list.end(), {indices.back(), indices[0]});
+      return list;
+    default:
+      return indices;
+  }
+}
+
+// Triangles (or, for lines and points, elements) a mode makes of `indexCount` indices.
+std::size_t elementCountFor(std::size_t indexCount, int mode) {
+  switch (mode) {
+    case TINYGLTF_MODE_TRIANGLES:
+      return indexCount / 3;
+    case TINYGLTF_MODE_TRIANGLE_STRIP:
+    case TINYGLTF_MODE_TRIANGLE_FAN:
+      return indexCount >= 3 ? indexCount - 2 : 0;
+    case TINYGLTF_MODE_LINE:
+      return indexCount / 2;
+    default:  // line strips and loops (at most one segment per index), points
+      return indexCount;
+  }
+}
+
+std::size_t indicesPerElement(Topology topology) {
+  switch (topology) {
+    case Topology::Triangles:
+      return 3;
+    case Topology::Lines:
+      return 2;
+    case Topology::Points:
+      return 1;
+  }
+  return 1;
+}
+
+const char* elementName(Topology topology) {
+  switch (topology) {
+    case Topology::Triangles:
+      return "triangles";
+    case Topology::Lines:
+      return "lines";
+    case Topology::Points:
+      return "points";
+  }
+  return "elements";
 }
 
 glm::vec4 readColor(const std::vector<float>& colors, std::size_t i, int components) {
@@ -93,25 +138,55 @@ PrimitiveConverter::PrimitiveConverter(const tinygltf::Model& model, LoadContext
     : model_(model), ctx_(ctx), reader_(reader) {}
 
 std::optional<Primitive> PrimitiveConverter::convert(int meshIndex, int primitiveIndex,
-                                                     std::size_t trianglesSoFar) const {
+                                                     std::size_t trianglesSoFar,
+                                                     const Deformation& deformation,
+                                                     int variant) const {
   const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(meshIndex)];
   const tinygltf::Primitive& source = mesh.primitives[static_cast<std::size_t>(primitiveIndex)];
   const std::string owner = fmt::format("/meshes/{}/primitives/{}", meshIndex, primitiveIndex);
-  if (!isTriangleMode(source.mode)) {
-    ctx_.warnings.push_back(fmt::format("{}: mode {} ({}) is not rendered; skipped", owner,
-                                        source.mode, modeName(source.mode)));
+  if (!isKnownMode(source.mode)) {
+    ctx_.warnings.push_back(
+        fmt::format("{}/mode: {} is not a glTF primitive mode; skipped", owner, source.mode));
     return std::nullopt;
   }
-  if (!source.targets.empty()) {
-    ctx_.warnOnce("morph targets are not supported; the base meshes are rendered");
-  }
   Primitive primitive;
-  primitive.material = checkedMaterial(source.material, owner);
+  primitive.topology = topologyOf(source.mode);
+  primitive.material = checkedMaterial(variantMaterial(source, variant), owner);
   readPositions(source, owner, primitive);
   readIndices(source, owner, trianglesSoFar, primitive);
   if (primitive.indices.empty()) return std::nullopt;
-  readAttributes(source, owner, primitive);
+  bool hasNormals = false;
+  bool hasTangents = false;
+  readAttributes(source, owner, primitive, hasNormals, hasTangents);
+  if (!deformation.morphWeights.empty()) {
+    applyMorphTargets(source, owner, deformation.morphWeights, hasNormals, hasTangents, primitive);
+  }
+  if (!deformation.jointMatrices.empty()) {
+    applySkin(source, owner, deformation.jointMatrices, primitive);
+  }
+  if (primitive.topology != Topology::Triangles) {
+    // glTF: lines and points without normals are rendered without lighting.
+    primitive.unlit = !hasNormals;
+    if (hasNormals) repairNormals(primitive);
+    return primitive;
+  }
+  finishNormals(primitive, hasNormals, owner);
+  finishTangents(primitive, hasTangents, tangentUvSet(primitive.material), owner);
+  if (!hasTangents && hasClearcoatNormalTexture(primitive.material)) {
+    // The Khronos validator's MESH_PRIMITIVE_NO_TANGENT_SPACE, an error; the specification lets a
+    // client compute MikkTSpace tangents instead, which finishTangents did.
+    ctx_.warnOnce(
+        "a primitive without TANGENT uses a material with a clearcoatNormalTexture; MikkTSpace "
+        "tangents generated");
+  }
   return primitive;
+}
+
+bool PrimitiveConverter::hasClearcoatNormalTexture(int material) const {
+  if (material < 0) return false;
+  const tinygltf::Material& source = model_.materials[static_cast<std::size_t>(material)];
+  const auto it = source.extensions.find("KHR_materials_clearcoat");
+  return it != source.extensions.end() && it->second.Has("clearcoatNormalTexture");
 }
 
 int PrimitiveConverter::checkedMaterial(int material, const std::string& owner) const {
@@ -120,6 +195,25 @@ int PrimitiveConverter::checkedMaterial(int material, const std::string& owner) 
             fmt::format("{}/material names material {}, which does not exist", owner, material));
   }
   return material;
+}
+
+int PrimitiveConverter::variantMaterial(const tinygltf::Primitive& source, int variant) const {
+  if (variant < 0) return source.material;
+  const auto it = source.extensions.find("KHR_materials_variants");
+  if (it == source.extensions.end() || !it->second.Has("mappings")) return source.material;
+  const tinygltf::Value& mappings = it->second.Get("mappings");
+  for (std::size_t m = 0; mappings.IsArray() && m < mappings.ArrayLen(); ++m) {
+    const tinygltf::Value& mapping = mappings.Get(static_cast<int>(m));
+    if (!mapping.Has("variants") || !mapping.Has("material")) continue;
+    const tinygltf::Value& variants = mapping.Get("variants");
+    for (std::size_t v = 0; variants.IsArray() && v < variants.ArrayLen(); ++v) {
+      const tinygltf::Value& entry = variants.Get(static_cast<int>(v));
+      if (entry.IsInt() && entry.GetNumberAsInt() == variant && mapping.Get("material").IsInt()) {
+        return mapping.Get("material").GetNumberAsInt();
+      }
+    }
+  }
+  return source.material;
 }
 
 int PrimitiveConverter::attributeAccessor(const tinygltf::Primitive& source,
@@ -171,7 +265,9 @@ void PrimitiveConverter::readIndices(const tinygltf::Primitive& source, const st
   const std::string what = fmt::format("{}/indices", owner);
   const std::size_t indexCount =
       source.indices >= 0 ? reader_.elementCount(source.indices, what) : vertexCount;
-  checkTriangleBudget(trianglesSoFar + triangleCountFor(indexCount, source.mode), owner);
+  // Lines and points count against the triangle limit element for element: each is one draw
+  // primitive, as cheap as a triangle or cheaper.
+  checkTriangleBudget(trianglesSoFar + elementCountFor(indexCount, source.mode), owner);
   std::vector<std::uint32_t> indices;
   if (source.indices >= 0) {
     indices = reader_.readIndices(source.indices, what);
@@ -180,13 +276,15 @@ void PrimitiveConverter::readIndices(const tinygltf::Primitive& source, const st
     indices.resize(vertexCount);
     for (std::size_t i = 0; i < vertexCount; ++i) indices[i] = static_cast<std::uint32_t>(i);
   }
-  primitive.indices = toTriangleList(std::move(indices), source.mode);
-  if (primitive.indices.size() % 3 != 0) {
+  primitive.indices = toList(std::move(indices), source.mode);
+  const std::size_t per = indicesPerElement(primitive.topology);
+  if (primitive.indices.size() % per != 0) {
     ctx_.warnings.push_back(
-        fmt::format("{}: {} indices are not a whole number of triangles; "
-                    "the last {} dropped",
-                    owner, primitive.indices.size(), primitive.indices.size() % 3));
-    primitive.indices.resize(primitive.indices.size() - primitive.indices.size() % 3);
+        fmt::format("{}: {} indices are not a whole number of {}; the last {} "
+                    "dropped",
+                    owner, primitive.indices.size(), elementName(primitive.topology),
+                    primitive.indices.size() % per));
+    primitive.indices.resize(primitive.indices.size() - primitive.indices.size() % per);
   }
 }
 
@@ -211,7 +309,8 @@ void PrimitiveConverter::checkTriangleBudget(std::size_t triangles,
 }
 
 void PrimitiveConverter::readAttributes(const tinygltf::Primitive& source, const std::string& owner,
-                                        Primitive& primitive) const {
+                                        Primitive& primitive, bool& hasNormals,
+                                        bool& hasTangents) const {
   const std::size_t count = primitive.vertices.size();
   int components = 0;
   const auto normals = readAttribute(source, "NORMAL", Semantic::Normal, owner, count, &components);
@@ -235,8 +334,8 @@ void PrimitiveConverter::readAttributes(const tinygltf::Primitive& source, const
     if (!uv1.empty()) v.uv1 = glm::vec2(uv1[i * 2], uv1[i * 2 + 1]);
     if (!colors.empty()) v.color = readColor(colors, i, colorComponents);
   }
-  finishNormals(primitive, !normals.empty(), owner);
-  finishTangents(primitive, !tangents.empty(), tangentUvSet(primitive.material), owner);
+  hasNormals = !normals.empty();
+  hasTangents = !tangents.empty();
 }
 
 void PrimitiveConverter::finishNormals(Primitive& primitive, bool hasNormals,
@@ -260,8 +359,19 @@ void PrimitiveConverter::finishNormals(Primitive& primitive, bool hasNormals,
 }
 
 int PrimitiveConverter::tangentUvSet(int material) const {
-  if (material < 0) return 0;
-  const int texCoord = model_.materials[static_cast<std::size_t>(material)].normalTexture.texCoord;
+  if (material < 0) return -1;
+  const tinygltf::Material& source = model_.materials[static_cast<std::size_t>(material)];
+  int texCoord = -1;
+  if (source.normalTexture.index >= 0) {
+    texCoord = source.normalTexture.texCoord;
+  } else if (const auto it = source.extensions.find("KHR_materials_clearcoat");
+             it != source.extensions.end() && it->second.Has("clearcoatNormalTexture")) {
+    const tinygltf::Value& info = it->second.Get("clearcoatNormalTexture");
+    texCoord = info.Has("texCoord") && info.Get("texCoord").IsInt()
+                   ? info.Get("texCoord").GetNumberAsInt()
+                   : 0;
+  }
+  if (texCoord < 0) return -1;
   return texCoord == 1 ? 1 : 0;
 }
 
@@ -272,7 +382,15 @@ void PrimitiveConverter::finishTangents(Primitive& primitive, bool hasTangents, 
     ctx_.warnings.push_back(
         fmt::format("{}: TANGENT has zero, non-finite or non-unit-w values; regenerated", owner));
   }
-  generateTangents(primitive, uvSet);
+  // Tangents serve normal maps only: without one the shaders never read them (the default frame
+  // stays), and MikkTSpace is the most expensive step of a load.
+  if (uvSet >= 0) {
+    generateMikkTSpaceTangents(primitive, uvSet);
+    return;
+  }
+  for (Vertex& vertex : primitive.vertices) {
+    vertex.tangent = glm::vec4(anyPerpendicular(vertex.normal), 1.0F);
+  }
 }
 
 }  // namespace lgh::gltf

@@ -1,8 +1,11 @@
 #include "scene/worker/scene_wire.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
+#include <tuple>
 #include <type_traits>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -104,6 +107,14 @@ class Reader {
     }
     return value;
   }
+  // A bool as written by Writer::pod (one byte); any other byte value is refused rather than
+  // loaded into a bool.
+  bool flag() {
+    static_assert(sizeof(bool) == 1);
+    const auto value = pod<std::uint8_t>();
+    if (value > 1) broken("a flag that is neither 0 nor 1");
+    return value == 1;
+  }
   std::string text() {
     const std::size_t length = count(1);
     const auto* start = reinterpret_cast<const char*>(take(length));
@@ -144,11 +155,26 @@ class Reader {
 
 // --- Scene -----------------------------------------------------------------------------------
 
+// Every texture of a material, in one order for writing, reading and checking.
+template <typename M>
+auto texturesOf(M& m) {
+  return std::array{
+      &m.baseColorTexture,           &m.metallicRoughnessTexture, &m.normalTexture,
+      &m.occlusionTexture,           &m.emissiveTexture,          &m.clearcoat.texture,
+      &m.clearcoat.roughnessTexture, &m.clearcoat.normalTexture,  &m.sheen.colorTexture,
+      &m.sheen.roughnessTexture,     &m.specular.texture,         &m.specular.colorTexture,
+      &m.transmission.texture};
+}
+static_assert(std::tuple_size_v<decltype(texturesOf(std::declval<Material&>()))> ==
+                  kMaterialTextureSlots,
+              "a Material texture the worker's messages do not carry");
+
 template <typename Out>
 void writeTexture(Out& out, const TextureRef& texture) {
   out.pod(texture.image);
   out.pod(texture.texCoord);
   out.pod(texture.sampler);
+  out.pod(texture.transform);
 }
 
 TextureRef readTexture(Reader& in) {
@@ -156,7 +182,42 @@ TextureRef readTexture(Reader& in) {
   texture.image = in.pod<int>();
   texture.texCoord = in.pod<int>();
   texture.sampler = in.pod<Sampler>();
+  texture.transform = in.pod<UvTransform>();
   return texture;
+}
+
+// The material layers' numbers (their textures travel with the material's other textures).
+template <typename Out>
+void writeLayers(Out& out, const Material& m) {
+  out.pod(m.model);
+  out.pod(m.clearcoat.factor);
+  out.pod(m.clearcoat.roughness);
+  out.pod(m.clearcoat.normalScale);
+  out.pod(m.sheen.colorFactor);
+  out.pod(m.sheen.roughnessFactor);
+  out.pod(m.specular.factor);
+  out.pod(m.specular.colorFactor);
+  out.pod(m.specular.ior);
+  out.pod(m.transmission.factor);
+  out.pod(m.transmission.thicknessFactor);
+  out.pod(m.transmission.attenuationColor);
+  out.pod(m.transmission.attenuationDistance);
+}
+
+void readLayers(Reader& in, Material& m) {
+  m.model = in.pod<MaterialModel>();
+  m.clearcoat.factor = in.pod<float>();
+  m.clearcoat.roughness = in.pod<float>();
+  m.clearcoat.normalScale = in.pod<float>();
+  m.sheen.colorFactor = in.pod<glm::vec3>();
+  m.sheen.roughnessFactor = in.pod<float>();
+  m.specular.factor = in.pod<float>();
+  m.specular.colorFactor = in.pod<glm::vec3>();
+  m.specular.ior = in.pod<float>();
+  m.transmission.factor = in.pod<float>();
+  m.transmission.thicknessFactor = in.pod<float>();
+  m.transmission.attenuationColor = in.pod<glm::vec3>();
+  m.transmission.attenuationDistance = in.pod<float>();
 }
 
 template <typename Out>
@@ -171,10 +232,8 @@ void writeMaterial(Out& out, const Material& m) {
   out.pod(m.alphaMode);
   out.pod(m.alphaCutoff);
   out.pod(m.doubleSided);
-  for (const TextureRef* texture : {&m.baseColorTexture, &m.metallicRoughnessTexture,
-                                    &m.normalTexture, &m.occlusionTexture, &m.emissiveTexture}) {
-    writeTexture(out, *texture);
-  }
+  writeLayers(out, m);
+  for (const TextureRef* texture : texturesOf(m)) writeTexture(out, *texture);
 }
 
 Material readMaterial(Reader& in) {
@@ -188,11 +247,9 @@ Material readMaterial(Reader& in) {
   m.occlusionStrength = in.pod<float>();
   m.alphaMode = in.pod<AlphaMode>();
   m.alphaCutoff = in.pod<float>();
-  m.doubleSided = in.pod<bool>();
-  for (TextureRef* texture : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
-                              &m.occlusionTexture, &m.emissiveTexture}) {
-    *texture = readTexture(in);
-  }
+  m.doubleSided = in.flag();
+  readLayers(in, m);
+  for (TextureRef* texture : texturesOf(m)) *texture = readTexture(in);
   return m;
 }
 
@@ -212,7 +269,7 @@ void writeCamera(Out& out, const SceneCamera& c) {
 SceneCamera readCamera(Reader& in) {
   SceneCamera c;
   c.name = in.text();
-  c.perspective = in.pod<bool>();
+  c.perspective = in.flag();
   c.yfov = in.pod<float>();
   c.aspectRatio = in.pod<float>();
   c.znear = in.pod<float>();
@@ -224,17 +281,37 @@ SceneCamera readCamera(Reader& in) {
 }
 
 template <typename Out>
+void writePrimitives(Out& out, const std::vector<Primitive>& primitives) {
+  out.size(primitives.size());
+  for (const Primitive& primitive : primitives) {
+    out.pods(primitive.vertices);
+    out.pods(primitive.indices);
+    out.pod(primitive.material);
+    out.pod(primitive.topology);
+    out.pod(primitive.unlit);
+  }
+}
+
+std::vector<Primitive> readPrimitives(Reader& in) {
+  std::vector<Primitive> primitives(in.count(8));
+  for (Primitive& primitive : primitives) {
+    primitive.vertices = in.pods<Vertex>();
+    primitive.indices = in.pods<std::uint32_t>();
+    primitive.material = in.pod<int>();
+    primitive.topology = in.pod<Topology>();
+    primitive.unlit = in.flag();
+  }
+  return primitives;
+}
+
+template <typename Out>
 void writeScene(Out& out, const Scene& scene) {
   out.text(scene.name);
   out.size(scene.meshes.size());
   for (const Mesh& mesh : scene.meshes) {
     out.text(mesh.name);
-    out.size(mesh.primitives.size());
-    for (const Primitive& primitive : mesh.primitives) {
-      out.pods(primitive.vertices);
-      out.pods(primitive.indices);
-      out.pod(primitive.material);
-    }
+    writePrimitives(out, mesh.primitives);
+    writePrimitives(out, mesh.linesAndPoints);
   }
   out.pods(scene.instances);
   out.size(scene.materials.size());
@@ -260,12 +337,8 @@ Scene readScene(Reader& in) {
   scene.meshes.resize(in.count(8));
   for (Mesh& mesh : scene.meshes) {
     mesh.name = in.text();
-    mesh.primitives.resize(in.count(8));
-    for (Primitive& primitive : mesh.primitives) {
-      primitive.vertices = in.pods<Vertex>();
-      primitive.indices = in.pods<std::uint32_t>();
-      primitive.material = in.pod<int>();
-    }
+    mesh.primitives = readPrimitives(in);
+    mesh.linesAndPoints = readPrimitives(in);
   }
   scene.instances = in.pods<MeshInstance>();
   scene.materials.resize(in.count(8));
@@ -297,17 +370,38 @@ void checkIndices(const Scene& scene) {
       bad("an instance's mesh");
     }
   }
+  const auto checkPrimitive = [&](const Primitive& primitive) {
+    if (primitive.material >= static_cast<int>(scene.materials.size())) bad("a material");
+    for (std::uint32_t index : primitive.indices) {
+      if (index >= primitive.vertices.size()) bad("a vertex index");
+    }
+  };
   for (const Mesh& mesh : scene.meshes) {
+    // Surface consumers (VPL placement, ray tracing) read triangle lists three indices at a time.
     for (const Primitive& primitive : mesh.primitives) {
-      if (primitive.material >= static_cast<int>(scene.materials.size())) bad("a material");
-      for (std::uint32_t index : primitive.indices) {
-        if (index >= primitive.vertices.size()) bad("a vertex index");
+      checkPrimitive(primitive);
+      if (primitive.topology != Topology::Triangles || primitive.indices.size() % 3 != 0) {
+        bad("a triangle list's topology or index count");
+      }
+    }
+    for (const Primitive& primitive : mesh.linesAndPoints) {
+      checkPrimitive(primitive);
+      const bool lines = primitive.topology == Topology::Lines;
+      if ((!lines && primitive.topology != Topology::Points) ||
+          (lines && primitive.indices.size() % 2 != 0)) {
+        bad("a line or point list's topology or index count");
       }
     }
   }
   for (const Material& m : scene.materials) {
-    for (const TextureRef* texture : {&m.baseColorTexture, &m.metallicRoughnessTexture,
-                                      &m.normalTexture, &m.occlusionTexture, &m.emissiveTexture}) {
+    if (m.model != MaterialModel::MetallicRoughness && m.model != MaterialModel::Unlit) {
+      bad("a material model");
+    }
+    if (m.alphaMode != AlphaMode::Opaque && m.alphaMode != AlphaMode::Mask &&
+        m.alphaMode != AlphaMode::Blend) {
+      bad("an alpha mode");
+    }
+    for (const TextureRef* texture : texturesOf(m)) {
       if (texture->image >= static_cast<int>(scene.images.size())) bad("a texture's image");
     }
   }
@@ -338,6 +432,11 @@ Encoded encodeJob(const LoadJob& job) {
     out.text(source.displayName);
     out.text(job.assetRoot.string());
     out.pod(job.limits);
+    const SceneLoadOptions& options = job.options;
+    out.pod(options.animation.has_value());
+    out.pod(options.animation.value_or(SceneAnimation{}));
+    out.text(options.materialVariant);
+    out.pod(options.ignoreUnsupportedExtensions);
   });
 }
 
@@ -357,6 +456,12 @@ LoadJob decodeJob(std::span<const std::uint8_t> bytes) {
   source.displayName = in.text();
   job.assetRoot = in.text();
   job.limits = in.pod<SceneLoadLimits>();
+  SceneLoadOptions& options = job.options;
+  const bool animated = in.flag();
+  const auto animation = in.pod<SceneAnimation>();
+  if (animated) options.animation = animation;
+  options.materialVariant = in.text();
+  options.ignoreUnsupportedExtensions = in.flag();
   in.finish();
   return job;
 }

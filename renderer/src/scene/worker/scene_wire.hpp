@@ -24,6 +24,7 @@ struct LoadJob {
   SceneSource source;
   std::filesystem::path assetRoot;  // AssetPath sources resolve inside it
   SceneLoadLimits limits;
+  SceneLoadOptions options;  // the pose, material variant and extension tolerance
 };
 
 // A message ready to be written: its size in bytes, and how to write it into that much memory
@@ -42,7 +43,8 @@ using LoadOutcome = std::variant<Scene, Error>;
 
 Encoded encodeOutcome(const LoadOutcome& outcome);
 // Throws lgh::Error(Internal) for bytes that are not a whole, well-formed message, or a scene
-// whose indices point outside it.
+// whose indices point outside it, whose index lists do not fit their topology, or whose enums
+// hold values the renderer does not know.
 LoadOutcome decodeOutcome(std::span<const std::uint8_t> bytes);
 
 }  // namespace lgh::worker

@@ -219,7 +219,7 @@ void setLimit(pid_t pid, __rlimit_resource resource, rlim_t value) {
 }
 
 Scene loadInThisProcess(const LoadJob& job) {
-  return loadSceneSource(job.source, job.assetRoot, job.limits);
+  return loadSceneSource(job.source, job.assetRoot, job.limits, job.options);
 }
 
 }  // namespace

@@ -2,8 +2,8 @@
 // renderer/src/vk/shadow_tracer.hpp for the layout): per pixel an origin, per pixel and ray a
 // target, per pixel and 32 rays a word of visibility bits. Rays of a pixel come in this order:
 // uLightSamples rays for each of the first uShadowedLights direct lights, then the LGH's k samples.
-#ifndef LGH_SHADOW_RAYS_GLSL
-#define LGH_SHADOW_RAYS_GLSL
+#ifndef LGH_RAY_BATCH_GLSL
+#define LGH_RAY_BATCH_GLSL
 
 #include "include/slots.glsl"
 
@@ -13,7 +13,7 @@ uniform int uRaysPerPixel;
 uniform int uVisibilityWords;  // (uRaysPerPixel + 31) / 32
 
 #ifdef LGH_READ_VISIBILITY
-layout(std430, binding = LGH_SLOT_RAY_VISIBILITY) readonly buffer ShadowVisibility {
+layout(std430, binding = LGH_BIND_RAY_VISIBILITY) readonly buffer ShadowVisibility {
   uint visibility[];
 };
 

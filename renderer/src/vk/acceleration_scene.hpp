@@ -1,0 +1,45 @@
+// A TraceScene on the tracer's device: the compacted bottom levels of the scene's meshes and the
+// top level over its instances. Holds the device, so it may outlive the tracer that built it.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "vk/acceleration_structure.hpp"
+#include "vk/shadow_tracer.hpp"
+
+namespace lgh::vk {
+
+class VulkanDevice;
+
+class AccelerationScene final : public TraceScene {
+ public:
+  // Throws vk::SystemError on a failing call, lgh::Error(TooLarge) past 2^32 vertices or indices.
+  static std::unique_ptr<AccelerationScene> build(std::shared_ptr<const VulkanDevice> device,
+                                                  const Scene& scene);
+  // Waits for the device first: a trace in flight may still read the structures.
+  ~AccelerationScene() override;
+  AccelerationScene(const AccelerationScene&) = delete;
+  AccelerationScene& operator=(const AccelerationScene&) = delete;
+
+  std::size_t gpuBytes() const override;
+  double buildGpuMs() const override { return buildGpuMs_; }
+  std::size_t triangleCount() const override { return triangleCount_; }
+
+  const VulkanDevice& device() const { return *device_; }
+  ::vk::AccelerationStructureKHR topLevel() const { return topLevel_.handle(); }
+
+ private:
+  AccelerationScene(std::shared_ptr<const VulkanDevice> device,
+                    std::vector<AccelerationStructure> bottomLevels,
+                    AccelerationStructure topLevel);
+
+  std::shared_ptr<const VulkanDevice> device_;
+  std::vector<AccelerationStructure> bottomLevels_;
+  AccelerationStructure topLevel_;
+  double buildGpuMs_ = 0.0;
+  std::size_t triangleCount_ = 0;
+};
+
+}  // namespace lgh::vk

@@ -1,0 +1,16 @@
+// A shader module from the embedded SPIR-V (spirv_shaders.hpp).
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "vk/vulkan_hpp.hpp"
+
+namespace lgh::vk {
+
+class VulkanDevice;
+
+::vk::raii::ShaderModule createShaderModule(const VulkanDevice& device,
+                                            std::span<const std::uint32_t> spirv);
+
+}  // namespace lgh::vk

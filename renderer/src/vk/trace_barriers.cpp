@@ -1,0 +1,63 @@
+#include "vk/trace_barriers.hpp"
+
+#include <array>
+
+namespace lgh::vk {
+namespace {
+
+using Access = ::vk::AccessFlagBits;
+using Stage = ::vk::PipelineStageFlagBits;
+
+// The three buffers handed between queue families: from `from` to `to`.
+std::array<::vk::BufferMemoryBarrier, 3> ownershipTransfer(const TraceBarrierScope& scope,
+                                                           std::uint32_t from, std::uint32_t to,
+                                                           ::vk::AccessFlags written,
+                                                           ::vk::AccessFlags read) {
+  const auto barrier = [&](::vk::Buffer buffer) {
+    return ::vk::BufferMemoryBarrier{.srcAccessMask = written,
+                                     .dstAccessMask = read,
+                                     .srcQueueFamilyIndex = from,
+                                     .dstQueueFamilyIndex = to,
+                                     .buffer = buffer,
+                                     .offset = 0,
+                                     .size = VK_WHOLE_SIZE};
+  };
+  return {barrier(scope.origins), barrier(scope.targets), barrier(scope.visibility)};
+}
+
+}  // namespace
+
+void recordBarriersBeforeTrace(const ::vk::raii::CommandBuffer& commands,
+                               const TraceBarrierScope& scope) {
+  const ::vk::MemoryBarrier sceneBuilt{.srcAccessMask = Access::eAccelerationStructureWriteKHR,
+                                       .dstAccessMask = Access::eAccelerationStructureReadKHR};
+  if (scope.transport == Transport::Interop) {
+    // Acquire: what GL wrote (made available by GL's semaphore signal or glFinish).
+    commands.pipelineBarrier(Stage::eAccelerationStructureBuildKHR | Stage::eTopOfPipe,
+                             scope.traceStage, {}, sceneBuilt,
+                             ownershipTransfer(scope, VK_QUEUE_FAMILY_EXTERNAL, scope.queueFamily,
+                                               {}, Access::eShaderRead | Access::eShaderWrite),
+                             nullptr);
+  } else {
+    // The host's writes to the staging buffers are visible to the submission already.
+    commands.pipelineBarrier(Stage::eAccelerationStructureBuildKHR, scope.traceStage, {},
+                             sceneBuilt, nullptr, nullptr);
+  }
+}
+
+void recordBarriersAfterTrace(const ::vk::raii::CommandBuffer& commands,
+                              const TraceBarrierScope& scope) {
+  if (scope.transport == Transport::Interop) {
+    // Release to GL, which reads after the vkDone semaphore (or once trace() has returned).
+    commands.pipelineBarrier(scope.traceStage, Stage::eBottomOfPipe, {}, nullptr,
+                             ownershipTransfer(scope, scope.queueFamily, VK_QUEUE_FAMILY_EXTERNAL,
+                                               Access::eShaderWrite, {}),
+                             nullptr);
+  } else {
+    const ::vk::MemoryBarrier hostRead{.srcAccessMask = Access::eShaderWrite,
+                                       .dstAccessMask = Access::eHostRead};
+    commands.pipelineBarrier(scope.traceStage, Stage::eHost, {}, hostRead, nullptr, nullptr);
+  }
+}
+
+}  // namespace lgh::vk

@@ -1,0 +1,27 @@
+// The barriers around a trace: the scene built by earlier submissions becomes readable by the
+// trace's shaders; interop buffers pass from GL (the external queue family) to Vulkan and back;
+// staging results become visible to the host that reads them.
+#pragma once
+
+#include <cstdint>
+
+#include "vk/shadow_tracer.hpp"
+#include "vk/vulkan_hpp.hpp"
+
+namespace lgh::vk {
+
+struct TraceBarrierScope {
+  ::vk::PipelineStageFlags traceStage;  // the stage of the tracing path's shaders
+  Transport transport = Transport::Staging;
+  std::uint32_t queueFamily = 0;
+  ::vk::Buffer origins;
+  ::vk::Buffer targets;
+  ::vk::Buffer visibility;
+};
+
+void recordBarriersBeforeTrace(const ::vk::raii::CommandBuffer& commands,
+                               const TraceBarrierScope& scope);
+void recordBarriersAfterTrace(const ::vk::raii::CommandBuffer& commands,
+                              const TraceBarrierScope& scope);
+
+}  // namespace lgh::vk

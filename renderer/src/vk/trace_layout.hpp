@@ -1,0 +1,55 @@
+// What both tracing paths bind (glsl/vk/include/shadow_rays.glsl): the top level and the three
+// ray buffers in one descriptor set, and the batch's constants as push constants. One set per
+// submission slot, so a set is never rewritten while the GPU may still read it.
+#pragma once
+
+#include <cstdint>
+
+#include "vk/vulkan_hpp.hpp"
+
+namespace lgh::vk {
+
+class VulkanDevice;
+
+// TraceConstants in shadow_rays.glsl.
+struct TracePushConstants {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::uint32_t raysPerPixel = 0;
+  std::uint32_t words = 0;
+  float tMin = 0.0F;
+  float tMaxInfinite = 0.0F;
+  float endEpsilon = 0.0F;
+};
+static_assert(sizeof(TracePushConstants) == 28, "std430 push constants: 7 scalars");
+
+struct TraceBindings {
+  ::vk::AccelerationStructureKHR scene;
+  ::vk::Buffer origins;
+  ::vk::Buffer targets;
+  ::vk::Buffer visibility;
+};
+
+class TraceLayout {
+ public:
+  // `stages`: the shader stages of the tracing paths the device has.
+  TraceLayout(const VulkanDevice& device, ::vk::ShaderStageFlags stages, std::uint32_t sets);
+
+  const ::vk::raii::PipelineLayout& pipelineLayout() const { return pipelineLayout_; }
+  ::vk::ShaderStageFlags stages() const { return stages_; }
+  ::vk::DescriptorSet set(std::uint32_t index) const { return *sets_[index]; }
+  // Points set `index` at `bindings`; the GPU must be done with that set.
+  void write(std::uint32_t index, const TraceBindings& bindings) const;
+  void pushConstants(const ::vk::raii::CommandBuffer& commands,
+                     const TracePushConstants& constants) const;
+
+ private:
+  const ::vk::raii::Device* device_;
+  ::vk::ShaderStageFlags stages_;
+  ::vk::raii::DescriptorSetLayout setLayout_;
+  ::vk::raii::PipelineLayout pipelineLayout_;
+  ::vk::raii::DescriptorPool pool_;
+  ::vk::raii::DescriptorSets sets_;
+};
+
+}  // namespace lgh::vk

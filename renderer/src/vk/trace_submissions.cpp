@@ -1,0 +1,76 @@
+#include "vk/trace_submissions.hpp"
+
+#include "vk/fence_wait.hpp"
+#include "vk/vulkan_device.hpp"
+
+namespace lgh::vk {
+namespace {
+
+std::vector<::vk::raii::Fence> createFences(const ::vk::raii::Device& device, std::uint32_t n) {
+  std::vector<::vk::raii::Fence> fences;
+  fences.reserve(n);
+  for (std::uint32_t i = 0; i < n; ++i) fences.emplace_back(device, ::vk::FenceCreateInfo{});
+  return fences;
+}
+
+}  // namespace
+
+TraceSubmissions::TraceSubmissions(const VulkanDevice& device, std::uint32_t slots)
+    : device_(&device),
+      pool_(
+          device.device(),
+          ::vk::CommandPoolCreateInfo{.flags = ::vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
+                                      .queueFamilyIndex = device.queueFamily()}),
+      commands_(device.device(),
+                ::vk::CommandBufferAllocateInfo{.commandPool = *pool_,
+                                                .level = ::vk::CommandBufferLevel::ePrimary,
+                                                .commandBufferCount = slots}),
+      fences_(createFences(device.device(), slots)),
+      inFlight_(slots, false),
+      timestamps_(device, slots) {}
+
+std::uint32_t TraceSubmissions::acquire() {
+  const std::uint32_t slot = next_;
+  next_ = (next_ + 1) % static_cast<std::uint32_t>(fences_.size());
+  retire(slot);
+  device_->device().resetFences(*fences_[slot]);
+  commands_[slot].reset();
+  return slot;
+}
+
+void TraceSubmissions::submit(std::uint32_t slot, ::vk::Semaphore wait,
+                              ::vk::PipelineStageFlags waitStage, ::vk::Semaphore signal) {
+  const ::vk::CommandBuffer commands = *commands_[slot];
+  const bool waits = static_cast<bool>(wait);
+  const bool signals = static_cast<bool>(signal);
+  device_->queue().submit(::vk::SubmitInfo{.waitSemaphoreCount = waits ? 1U : 0U,
+                                           .pWaitSemaphores = waits ? &wait : nullptr,
+                                           .pWaitDstStageMask = waits ? &waitStage : nullptr,
+                                           .commandBufferCount = 1,
+                                           .pCommandBuffers = &commands,
+                                           .signalSemaphoreCount = signals ? 1U : 0U,
+                                           .pSignalSemaphores = signals ? &signal : nullptr},
+                          *fences_[slot]);
+  inFlight_[slot] = true;
+}
+
+void TraceSubmissions::retire(std::uint32_t slot) {
+  if (!inFlight_[slot]) return;
+  waitForFence(*device_, *fences_[slot], "a shadow trace");
+  inFlight_[slot] = false;
+  bankedGpuMs_ += timestamps_.elapsedMs(slot);
+}
+
+void TraceSubmissions::retireAll() {
+  // Oldest first: the order they were submitted in.
+  const auto slots = static_cast<std::uint32_t>(fences_.size());
+  for (std::uint32_t i = 0; i < slots; ++i) retire((next_ + i) % slots);
+}
+
+double TraceSubmissions::takeGpuMs() {
+  const double gpuMs = bankedGpuMs_;
+  bankedGpuMs_ = 0.0;
+  return gpuMs;
+}
+
+}  // namespace lgh::vk

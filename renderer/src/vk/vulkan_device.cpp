@@ -1,0 +1,113 @@
+#include "vk/vulkan_device.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "lgh/error.hpp"
+#include "vk/physical_device.hpp"
+#include "vk/vulkan_instance.hpp"
+
+namespace lgh::vk {
+namespace {
+
+std::uint32_t computeQueueFamily(const ::vk::raii::PhysicalDevice& physical) {
+  const auto families = physical.getQueueFamilyProperties();
+  for (std::uint32_t i = 0; i < families.size(); ++i) {
+    if (families[i].queueFlags & ::vk::QueueFlagBits::eCompute) return i;
+  }
+  throw Error(ErrorCode::Unavailable, fmt::format("the Vulkan device {} has no queue that computes",
+                                                  physical.getProperties().deviceName.data()));
+}
+
+::vk::raii::Device createDevice(const ::vk::raii::PhysicalDevice& physical,
+                                const DeviceCapabilities& capabilities, std::uint32_t family) {
+  const float priority = 1.0F;
+  const ::vk::DeviceQueueCreateInfo queue{
+      .queueFamilyIndex = family, .queueCount = 1, .pQueuePriorities = &priority};
+  FeatureChain features(capabilities.rayQuery, capabilities.rayTracingPipeline);
+  features.requestTracerFeatures();
+  const std::vector<const char*> extensions = deviceExtensions(capabilities);
+  return {physical, ::vk::DeviceCreateInfo{
+                        .pNext = &features.head(),
+                        .queueCreateInfoCount = 1,
+                        .pQueueCreateInfos = &queue,
+                        .enabledExtensionCount = static_cast<std::uint32_t>(extensions.size()),
+                        .ppEnabledExtensionNames = extensions.data()}};
+}
+
+DeviceLimits readLimits(const ::vk::raii::PhysicalDevice& physical, bool pipeline,
+                        std::uint32_t family) {
+  const auto chain =
+      physical.getProperties2<::vk::PhysicalDeviceProperties2,
+                              ::vk::PhysicalDeviceAccelerationStructurePropertiesKHR>();
+  const auto& core = chain.get<::vk::PhysicalDeviceProperties2>().properties;
+  const auto& structures = chain.get<::vk::PhysicalDeviceAccelerationStructurePropertiesKHR>();
+  DeviceLimits limits;
+  limits.scratchAlignment = structures.minAccelerationStructureScratchOffsetAlignment;
+  limits.maxStorageBufferRange = core.limits.maxStorageBufferRange;
+  limits.timestamps = physical.getQueueFamilyProperties()[family].timestampValidBits > 0;
+  limits.timestampPeriodNs = core.limits.timestampPeriod;
+  if (pipeline) {
+    // Asked only where the extension is: its structure is not for devices without it.
+    const auto tracing = physical
+                             .getProperties2<::vk::PhysicalDeviceProperties2,
+                                             ::vk::PhysicalDeviceRayTracingPipelinePropertiesKHR>()
+                             .get<::vk::PhysicalDeviceRayTracingPipelinePropertiesKHR>();
+    limits.shaderGroupHandleSize = tracing.shaderGroupHandleSize;
+    limits.shaderGroupHandleAlignment = tracing.shaderGroupHandleAlignment;
+    limits.shaderGroupBaseAlignment = tracing.shaderGroupBaseAlignment;
+  }
+  return limits;
+}
+
+std::string versionText(std::uint32_t version) {
+  return fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(version), VK_API_VERSION_MINOR(version),
+                     VK_API_VERSION_PATCH(version));
+}
+
+TracerInfo describe(const ::vk::raii::PhysicalDevice& physical,
+                    const DeviceCapabilities& capabilities) {
+  const auto chain =
+      physical
+          .getProperties2<::vk::PhysicalDeviceProperties2, ::vk::PhysicalDeviceDriverProperties>();
+  const auto& core = chain.get<::vk::PhysicalDeviceProperties2>().properties;
+  const auto& driver = chain.get<::vk::PhysicalDeviceDriverProperties>();
+  TracerInfo info;
+  info.deviceName = core.deviceName.data();
+  info.driverName = fmt::format("{} {}", driver.driverName.data(), driver.driverInfo.data());
+  info.apiVersion = versionText(core.apiVersion);
+  info.rayQuery = capabilities.rayQuery;
+  info.rayTracingPipeline = capabilities.rayTracingPipeline;
+  info.externalMemoryFd = capabilities.externalMemoryFd;
+  info.externalSemaphoreFd = capabilities.externalSemaphoreFd;
+  return info;
+}
+
+}  // namespace
+
+std::shared_ptr<VulkanDevice> VulkanDevice::create(const DeviceUuid& uuid) {
+  ::vk::raii::Instance instance = createInstance();
+  ::vk::raii::PhysicalDevice physical = choosePhysicalDevice(instance, uuid);
+  return std::shared_ptr<VulkanDevice>(new VulkanDevice(std::move(instance), std::move(physical)));
+}
+
+VulkanDevice::VulkanDevice(::vk::raii::Instance instance, ::vk::raii::PhysicalDevice physical)
+    : instance_(std::move(instance)),
+      physical_(std::move(physical)),
+      capabilities_(probeCapabilities(physical_)),
+      queueFamily_(computeQueueFamily(physical_)),
+      device_(createDevice(physical_, capabilities_, queueFamily_)),
+      queue_(device_, queueFamily_, 0),
+      limits_(readLimits(physical_, capabilities_.rayTracingPipeline, queueFamily_)),
+      memory_(physical_.getMemoryProperties()),
+      info_(describe(physical_, capabilities_)) {}
+
+void VulkanDevice::waitIdleNoThrow() const noexcept {
+  try {
+    device_.waitIdle();
+  } catch (const ::vk::SystemError& error) {
+    spdlog::warn("vulkan: waiting for the device failed: {}", error.what());
+  }
+}
+
+}  // namespace lgh::vk

@@ -1,0 +1,205 @@
+// ShadowTracer on Vulkan: the device that is the GL device, the tracing paths it offers, the ray
+// buffers and semaphores shared with GL, and the submissions in flight. Every public function
+// turns Vulkan failures into lgh::Error at its boundary.
+#include <memory>
+#include <optional>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "core/stopwatch.hpp"
+#include "lgh/error.hpp"
+#include "vk/acceleration_scene.hpp"
+#include "vk/exported_semaphores.hpp"
+#include "vk/physical_device.hpp"
+#include "vk/ray_buffer_set.hpp"
+#include "vk/shadow_tracer.hpp"
+#include "vk/trace_barriers.hpp"
+#include "vk/trace_layout.hpp"
+#include "vk/trace_recorder.hpp"
+#include "vk/trace_submissions.hpp"
+#include "vk/vulkan_device.hpp"
+#include "vk/vulkan_errors.hpp"
+
+namespace lgh::vk {
+namespace {
+
+// Submissions in flight at once: enough for the chunks of one frame to queue up behind
+// each other without waiting on the host.
+constexpr std::uint32_t kSlots = 4;
+
+::vk::ShaderStageFlags traceStages(const DeviceCapabilities& capabilities) {
+  ::vk::ShaderStageFlags stages;
+  if (capabilities.rayQuery) stages |= ::vk::ShaderStageFlagBits::eCompute;
+  if (capabilities.rayTracingPipeline) stages |= ::vk::ShaderStageFlagBits::eRaygenKHR;
+  return stages;
+}
+
+std::string pathNames(const TracerInfo& info) {
+  if (info.rayQuery && info.rayTracingPipeline) return "ray query + ray-tracing pipeline";
+  return info.rayQuery ? "ray query" : "ray-tracing pipeline";
+}
+
+TracePushConstants pushConstants(const RayBatchShape& shape, const TraceParams& params) {
+  return {.width = shape.width,
+          .height = shape.height,
+          .raysPerPixel = shape.raysPerPixel,
+          .words = shape.words(),
+          .tMin = params.tMin,
+          .tMaxInfinite = params.tMaxInfinite,
+          .endEpsilon = params.endEpsilon};
+}
+
+class VulkanShadowTracer final : public ShadowTracer {
+ public:
+  explicit VulkanShadowTracer(std::shared_ptr<const VulkanDevice> device)
+      : device_(std::move(device)),
+        info_(device_->info()),
+        layout_(*device_, traceStages(device_->capabilities()), kSlots),
+        submissions_(*device_, kSlots) {
+    if (info_.rayQuery) rayQuery_ = createRayQueryRecorder(*device_, layout_);
+    if (info_.rayTracingPipeline) pipeline_ = createRayTracingPipelineRecorder(*device_, layout_);
+  }
+  ~VulkanShadowTracer() override { device_->waitIdleNoThrow(); }
+  VulkanShadowTracer(const VulkanShadowTracer&) = delete;
+  VulkanShadowTracer& operator=(const VulkanShadowTracer&) = delete;
+
+  void setCreateMs(double ms) { info_.createMs = ms; }
+  const TracerInfo& info() const override { return info_; }
+
+  std::unique_ptr<TraceScene> buildScene(const Scene& scene) override {
+    return translateVulkanErrors("buildScene",
+                                 [&] { return AccelerationScene::build(device_, scene); });
+  }
+
+  const RayBuffers& rayBuffers(const RayBatchShape& shape, Transport transport) override {
+    return translateVulkanErrors("rayBuffers", [&]() -> const RayBuffers& {
+      checkShape(shape, device_->limits().maxStorageBufferRange);
+      if (transport == Transport::Interop && !info_.externalMemoryFd) {
+        throw Error(
+            ErrorCode::Unavailable,
+            fmt::format("interop ray buffers: {} cannot export memory as fds", info_.deviceName));
+      }
+      if (!rayBuffers_.fits(shape, transport)) {
+        submissions_.retireAll();  // no trace may still use the old buffers
+        rayBuffers_.reallocate(*device_, shape, transport);
+      }
+      return rayBuffers_.shared();
+    });
+  }
+
+  SemaphoreFds exportSemaphores() override {
+    return translateVulkanErrors("exportSemaphores", [&] {
+      if (!info_.externalSemaphoreFd) {
+        throw Error(ErrorCode::Unavailable,
+                    fmt::format("{} cannot export semaphores as fds", info_.deviceName));
+      }
+      submissions_.retireAll();  // no submission may still wait on or signal the old pair
+      semaphores_.emplace(*device_);
+      return semaphores_->exportFds();
+    });
+  }
+
+  void trace(const TraceScene& scene, TracePath path, const RayBatchShape& shape,
+             const TraceParams& params, bool useSemaphores) override {
+    translateVulkanErrors("trace", [&] {
+      const AccelerationScene& built = ownScene(scene);
+      const TraceRecorder& recorder = pathFor(path);
+      checkBatch(shape, useSemaphores);
+      const std::uint32_t slot = submissions_.acquire();
+      layout_.write(slot, {.scene = built.topLevel(),
+                           .origins = rayBuffers_.origins(),
+                           .targets = rayBuffers_.targets(),
+                           .visibility = rayBuffers_.visibility()});
+      record(slot, recorder, pushConstants(shape, params));
+      // All commands wait for GL, the first timestamp too: the GPU time is the trace's alone.
+      submissions_.submit(slot, useSemaphores ? semaphores_->glDone() : ::vk::Semaphore{},
+                          ::vk::PipelineStageFlagBits::eAllCommands,
+                          useSemaphores ? semaphores_->vkDone() : ::vk::Semaphore{});
+      if (!useSemaphores) submissions_.retire(slot);
+    });
+  }
+
+  TraceTimings collectTimings() override {
+    return translateVulkanErrors("collectTimings", [&] {
+      submissions_.retireAll();
+      return TraceTimings{.traceGpuMs = submissions_.takeGpuMs()};
+    });
+  }
+
+ private:
+  const AccelerationScene& ownScene(const TraceScene& scene) const {
+    const auto* built = dynamic_cast<const AccelerationScene*>(&scene);
+    if (built == nullptr || &built->device() != device_.get()) {
+      throw Error(ErrorCode::Invalid, "trace: the scene was built by another shadow tracer");
+    }
+    return *built;
+  }
+
+  const TraceRecorder& pathFor(TracePath path) const {
+    const auto& recorder = path == TracePath::RayQuery ? rayQuery_ : pipeline_;
+    if (!recorder) {
+      throw Error(ErrorCode::Unavailable,
+                  fmt::format("trace: {} has no {} path", info_.deviceName, enumName(path)));
+    }
+    return *recorder;
+  }
+
+  void checkBatch(const RayBatchShape& shape, bool useSemaphores) const {
+    checkShape(shape, device_->limits().maxStorageBufferRange);
+    if (!rayBuffers_.allocated() || !rayBuffers_.fits(shape, rayBuffers_.shared().transport)) {
+      throw Error(ErrorCode::Invalid,
+                  "trace: the ray buffers do not hold the batch: call rayBuffers() with its "
+                  "shape first");
+    }
+    if (useSemaphores && !semaphores_) {
+      throw Error(ErrorCode::Invalid, "trace: no semaphores to wait on: call exportSemaphores()");
+    }
+  }
+
+  void record(std::uint32_t slot, const TraceRecorder& recorder,
+              const TracePushConstants& constants) const {
+    const ::vk::raii::CommandBuffer& commands = submissions_.commands(slot);
+    const TraceBarrierScope scope{.traceStage = recorder.stage(),
+                                  .transport = rayBuffers_.shared().transport,
+                                  .queueFamily = device_->queueFamily(),
+                                  .origins = rayBuffers_.origins(),
+                                  .targets = rayBuffers_.targets(),
+                                  .visibility = rayBuffers_.visibility()};
+    commands.begin({.flags = ::vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    submissions_.timestamps().begin(commands, slot);
+    recordBarriersBeforeTrace(commands, scope);
+    recorder.record(commands, layout_.set(slot), constants);
+    recordBarriersAfterTrace(commands, scope);
+    submissions_.timestamps().end(commands, slot);
+    commands.end();
+  }
+
+  std::shared_ptr<const VulkanDevice> device_;
+  TracerInfo info_;
+  TraceLayout layout_;
+  std::unique_ptr<TraceRecorder> rayQuery_;
+  std::unique_ptr<TraceRecorder> pipeline_;
+  TraceSubmissions submissions_;
+  RayBufferSet rayBuffers_;
+  std::optional<ExportedSemaphores> semaphores_;
+};
+
+}  // namespace
+
+std::unique_ptr<ShadowTracer> ShadowTracer::create(const DeviceUuid& glDevice) {
+  const Stopwatch wallClock;
+  auto tracer = translateVulkanErrors("ShadowTracer::create", [&] {
+    return std::make_unique<VulkanShadowTracer>(VulkanDevice::create(glDevice));
+  });
+  tracer->setCreateMs(wallClock.elapsedMs());
+  const TracerInfo& info = tracer->info();
+  spdlog::info(
+      "vulkan: shadow tracer on {} ({}, Vulkan {}, UUID {}): {}; interop memory {}, interop "
+      "semaphores {}; created in {:.0f} ms",
+      info.deviceName, info.driverName, info.apiVersion, uuidText(glDevice), pathNames(info),
+      info.externalMemoryFd ? "yes" : "no", info.externalSemaphoreFd ? "yes" : "no", info.createMs);
+  return tracer;
+}
+
+}  // namespace lgh::vk

@@ -1,0 +1,221 @@
+// Shadows through the whole frame (GL ray setup, the Vulkan tracer on lavapipe, the GL side of its
+// buffers, direct lighting, the LGH shadow ratio and its filter), on llvmpipe + lavapipe:
+//  - a known occluder casts its shadow where geometry says it must, and nowhere else;
+//  - both tracing paths give the same image; shadows only ever darken;
+//  - the LGH's shadow samples are traced and filtered; the shadowed brute-force reference;
+//  - soft shadows from a light with a radius have penumbrae;
+//  - without a Vulkan driver: auto renders unshadowed with a warning, "on" fails with 503.
+// Golden images of the shadowed demo are in test_render_golden.cpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "lgh/base64.hpp"
+#include "lgh/error.hpp"
+#include "lgh/renderer.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using json = nlohmann::json;
+
+class Shadows : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { renderer = std::make_unique<lgh::Renderer>(options()); }
+  static void TearDownTestSuite() { renderer.reset(); }
+
+  static lgh::RendererOptions options() {
+    lgh::RendererOptions opts = lgh::test::rendererOptions();
+    opts.assetRoot = lgh::test::assimpGltfDir();
+    return opts;
+  }
+
+  static lgh::RenderResult render(const json& request) {
+    return renderer->render(lgh::parseRenderRequest(request));
+  }
+
+  static float luminance(const lgh::FloatImage& image, int x, int y) {
+    const float* p = image.pixel(x, y);
+    return 0.2126F * p[0] + 0.7152F * p[1] + 0.0722F * p[2];
+  }
+
+  static inline std::unique_ptr<lgh::Renderer> renderer;
+};
+
+// A ground square (half size 2) at y = 0, an occluder square (half size 0.25) at y = 1, a point
+// light at (0, 2, 0) and a camera at (0, 3, 0) looking down (yfov 45 degrees, 128 x 128). The
+// occluder's shadow on the ground has half size 0.5: seen from the camera, the occluder covers
+// the centre out to 0.30 of the half-width and its shadow reaches 0.40; beyond, the ground is lit.
+json occluderRequest(const std::string& shadows) {
+  std::vector<lgh::test::Position> positions;
+  std::vector<std::uint32_t> indices;
+  lgh::test::addSquare(positions, indices, 0.0F, 2.0F);
+  lgh::test::addSquare(positions, indices, 1.0F, 0.25F);
+  const auto glb = lgh::test::makeTriangleGlb(positions, indices);
+  return {{"scene", {{"glb_base64", lgh::base64::encode(glb)}}},
+          {"camera",
+           {{"type", "look_at"},
+            {"position", {0, 3, 0}},
+            {"target", {0, 0, 0}},
+            {"up", {0, 0, -1}},
+            {"yfov", 45}}},
+          {"lights", {{{"type", "point"}, {"position", {0, 2, 0}}, {"intensity", 10}}}},
+          {"settings", {{"ambient", 0}, {"shadows", shadows}}},
+          {"output", {{"width", 128}, {"height", 128}, {"format", "exr-float"}}}};
+}
+
+TEST_F(Shadows, AnOccluderShadowsTheGroundWhereGeometrySays) {
+  const lgh::RenderResult lit = render(occluderRequest("off"));
+  const lgh::RenderResult shadowed = render(occluderRequest("on"));
+  EXPECT_EQ(lit.decisions.at("shadows"), "off");
+  EXPECT_NE(shadowed.decisions.at("shadows"), "none");
+  const auto at = [](float fraction) { return 64 + static_cast<int>(fraction * 64.0F); };
+  for (const float fraction : {0.34F, 0.37F}) {  // the ring of shadow around the occluder
+    EXPECT_GT(luminance(lit.image, at(fraction), 64), 0.05F) << fraction;
+    EXPECT_EQ(luminance(shadowed.image, at(fraction), 64), 0.0F) << fraction;
+    EXPECT_EQ(luminance(shadowed.image, 64, at(fraction)), 0.0F) << fraction;
+  }
+  for (const float fraction : {0.0F, 0.2F, 0.5F, 0.8F}) {  // the occluder's top, the open ground
+    EXPECT_FLOAT_EQ(luminance(shadowed.image, at(fraction), 64),
+                    luminance(lit.image, at(fraction), 64))
+        << fraction;
+  }
+}
+
+TEST_F(Shadows, BothTracingPathsRenderTheSameImage) {
+  json request = {
+      {"settings", {{"shadows", "on"}, {"lgh", {{"enabled", true}, {"vpl_count", 3000}}}}},
+      {"output", {{"width", 64}, {"height", 48}, {"format", "exr-float"}}}};
+  request["settings"]["shadow_path"] = "ray-query";
+  const lgh::RenderResult rayQuery = render(request);
+  request["settings"]["shadow_path"] = "pipeline";
+  const lgh::RenderResult pipeline = render(request);
+  EXPECT_EQ(rayQuery.decisions.at("shadows"), "ray-query");
+  EXPECT_EQ(pipeline.decisions.at("shadows"), "pipeline");
+  // The LGH's float atomics vary in the last bits from run to run (test_context_paths.cpp).
+  ASSERT_EQ(rayQuery.image.rgba.size(), pipeline.image.rgba.size());
+  double largest = 0.0;
+  for (std::size_t i = 0; i < rayQuery.image.rgba.size(); ++i) {
+    const double a = rayQuery.image.rgba[i];
+    const double b = pipeline.image.rgba[i];
+    largest = std::max(largest, std::fabs(a - b) / std::max({1e-3, std::fabs(a), std::fabs(b)}));
+  }
+  EXPECT_LT(largest, 1e-3);
+}
+
+TEST_F(Shadows, ShadowsOnlyDarkenTheDemo) {
+  json request = {{"output", {{"width", 96}, {"height", 72}, {"format", "exr-float"}}}};
+  request["settings"]["shadows"] = "off";
+  const lgh::RenderResult off = render(request);
+  request["settings"]["shadows"] = "auto";
+  const lgh::RenderResult on = render(request);
+  int darker = 0;
+  for (int y = 0; y < 72; ++y) {
+    for (int x = 0; x < 96; ++x) {
+      const float a = luminance(off.image, x, y);
+      const float b = luminance(on.image, x, y);
+      EXPECT_LE(b, a * 1.0001F + 1e-6F) << x << "," << y;
+      if (b < 0.9F * a) ++darker;
+    }
+  }
+  EXPECT_GT(darker, 96 * 72 / 50) << "the demo's boxes and sphere cast shadows";
+  for (const char* row : {"shadow ray setup", "shadow rays", "shadow transfer"}) {
+    EXPECT_GE(on.timings.get(row), 0.0) << row;
+  }
+  EXPECT_EQ(on.decisions.at("shadow_rays"), "3");  // the demo's three lights, one ray each
+  EXPECT_FALSE(on.decisions.at("shadow_transport").empty());
+  EXPECT_TRUE(on.warnings.empty());
+}
+
+TEST_F(Shadows, LghSamplesAreTracedAndFiltered) {
+  json request = {{"settings", {{"lgh", {{"enabled", true}, {"vpl_count", 4000}}}}},
+                  {"output", {{"width", 80}, {"height", 60}, {"format", "exr-float"}}}};
+  request["settings"]["shadows"] = "off";
+  const lgh::RenderResult unshadowed = render(request);
+  request["settings"]["shadows"] = "on";
+  const lgh::RenderResult shadowed = render(request);
+  EXPECT_EQ(shadowed.decisions.at("shadow_rays"), "7");  // 3 direct lights + k = 4 samples
+  EXPECT_GE(shadowed.timings.get("shadow filter"), 0.0);
+  double sumOff = 0.0;
+  double sumOn = 0.0;
+  for (int y = 0; y < 60; ++y) {
+    for (int x = 0; x < 80; ++x) {
+      sumOff += luminance(unshadowed.image, x, y);
+      sumOn += luminance(shadowed.image, x, y);
+    }
+  }
+  EXPECT_LT(sumOn, 0.97 * sumOff) << "indirect light is shadowed too";
+}
+
+TEST_F(Shadows, ALightWithARadiusCastsPenumbrae) {
+  json hard = occluderRequest("on");
+  json soft = hard;
+  soft["lights"][0]["radius"] = 0.3;
+  soft["settings"]["shadow_light_samples"] = 16;
+  const lgh::RenderResult hardImage = render(hard);
+  const lgh::RenderResult softImage = render(soft);
+  EXPECT_EQ(softImage.decisions.at("shadow_rays"), "16");
+  const lgh::RenderResult open = render(occluderRequest("off"));
+  int partial = 0;
+  for (int x = 64; x < 128; ++x) {
+    const float lit = luminance(open.image, x, 64);
+    const float value = luminance(softImage.image, x, 64);
+    if (lit > 0.0F && value > 0.1F * lit && value < 0.9F * lit) ++partial;
+  }
+  EXPECT_GE(partial, 3) << "a penumbra several pixels wide";
+  EXPECT_EQ(luminance(hardImage.image, 64 + static_cast<int>(0.37F * 64.0F), 64), 0.0F);
+}
+
+TEST_F(Shadows, LightsBeyondTheRayBudgetAreNamedInAWarning) {
+  json request = occluderRequest("on");
+  request["settings"]["shadow_light_samples"] = 16;
+  json light = request["lights"][0];
+  for (int i = 0; i < 4; ++i) request["lights"].push_back(light);  // 5 lights x 16 = 80 > 64
+  const lgh::RenderResult result = render(request);
+  EXPECT_EQ(result.decisions.at("shadow_rays"), "64");
+  ASSERT_EQ(result.warnings.size(), 1U);
+  EXPECT_NE(result.warnings[0].find("1 of 5 lights cast no shadows"), std::string::npos)
+      << result.warnings[0];
+}
+
+// Each test runs in a process of its own (ctest): the Vulkan loader here finds no driver.
+class WithoutVulkan : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    setenv("VK_DRIVER_FILES", "/nonexistent/icd.json", 1);
+    setenv("VK_ICD_FILENAMES", "/nonexistent/icd.json", 1);
+    renderer = std::make_unique<lgh::Renderer>(lgh::test::rendererOptions());
+  }
+  std::unique_ptr<lgh::Renderer> renderer;
+};
+
+TEST_F(WithoutVulkan, AutoRendersUnshadowedAndSaysWhy) {
+  const lgh::RenderResult result =
+      renderer->render(lgh::parseRenderRequest(R"({"output": {"width": 32, "height": 24}})"));
+  EXPECT_EQ(result.decisions.at("shadows"), "none");
+  ASSERT_EQ(result.warnings.size(), 1U);
+  EXPECT_NE(result.warnings[0].find("rendered without shadows"), std::string::npos);
+}
+
+TEST_F(WithoutVulkan, OnIsUnavailableNamingTheField) {
+  try {
+    renderer->render(lgh::parseRenderRequest(
+        R"({"settings": {"shadows": "on"}, "output": {"width": 32, "height": 24}})"));
+    FAIL() << "shadows \"on\" rendered without a Vulkan driver";
+  } catch (const lgh::Error& error) {
+    EXPECT_EQ(error.code(), lgh::ErrorCode::Unavailable);
+    EXPECT_EQ(error.field(), "/settings/shadows");
+  }
+  // The renderer keeps working.
+  const lgh::RenderResult after = renderer->render(lgh::parseRenderRequest(
+      R"({"settings": {"shadows": "off"}, "output": {"width": 32, "height": 24}})"));
+  EXPECT_EQ(after.decisions.at("shadows"), "off");
+}
+
+}  // namespace
