@@ -54,5 +54,11 @@ Command addHandoffCommand(CLI::App& app, const cli::ContextFlags& context);
 Command addGiCommand(CLI::App& app, const cli::ContextFlags& context);
 // `lgh-bench png`: PNG encoders on the demo's display codes (server/bench/png.cpp).
 Command addPngCommand(CLI::App& app, const cli::ContextFlags& context);
+// `lgh-bench scene-load`: scene parsing in this process and in the worker process
+// (server/bench/scene_load.cpp).
+Command addSceneLoadCommand(CLI::App& app, const cli::ContextFlags& context);
+
+// argv[1] of lgh-bench started as scene-load's scene parser worker.
+inline constexpr const char* kSceneWorkerFlag = "--scene-parser-worker";
 
 }  // namespace lgh::bench

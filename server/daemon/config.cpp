@@ -1,13 +1,13 @@
 #include "config.hpp"
 
-#include "lgh/task_pool.hpp"
-
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
 
+#include "lgh/task_pool.hpp"
 #include "version.hpp"
 
 namespace lghd {
@@ -37,6 +37,7 @@ struct RawFlags {
   int testRenderDelayMs = 0;
   std::size_t readbackMb = 512;
   std::string authTokenFile;
+  std::string sceneWorker = "on";
   std::size_t jobsMemoryMb = 1024;
   double jobTtlSeconds = 600.0;
   double jobDeadlineSeconds = 600.0;
@@ -52,6 +53,14 @@ void addServerFlags(CLI::App& app, DaemonConfig& config, RawFlags& raw) {
   app.add_option("--port", config.port, "TCP port; 0 picks a free one (printed on stdout)")
       ->envname("LGHD_PORT")
       ->check(CLI::Range(0, 65535))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--metrics-port", config.metricsPort,
+                 "also serve GET /metrics, /healthz and /readyz on this port, without the bearer "
+                 "token (for scrapers that send none); 0 picks a free one (printed on stdout); "
+                 "-1: none")
+      ->envname("LGHD_METRICS_PORT")
+      ->check(CLI::Range(-1, 65535))
       ->capture_default_str()
       ->group(group);
   app.add_option("--http-threads", config.httpThreads,
@@ -137,6 +146,18 @@ void addRenderFlags(CLI::App& app, DaemonConfig& config, RawFlags& raw) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str()
       ->group(group);
+  app.add_option("--scene-worker", raw.sceneWorker,
+                 "parse scene assets in a worker process (on), so that a parser crash fails one "
+                 "request, not lghd; or in lghd's own process (off)")
+      ->envname("LGHD_SCENE_WORKER")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--test-scene-worker-crash-marker", config.testSceneWorkerCrashMarker,
+                 "FOR TESTS ONLY: the scene parser worker crashes (SIGSEGV) on assets whose name "
+                 "contains this text")
+      ->envname("LGHD_TEST_SCENE_WORKER_CRASH_MARKER")
+      ->group("Testing");
   app.add_option("--test-render-delay-ms", raw.testRenderDelayMs,
                  "FOR TESTS ONLY: sleep this long on the render thread before each render")
       ->envname("LGHD_TEST_RENDER_DELAY_MS")
@@ -164,7 +185,25 @@ void addLimitFlags(CLI::App& app, Limits& limits, RawFlags& raw) {
       "LGHD_MAX_TRIANGLES");
   add("--max-texture-size", limits.maxTextureSize, "texture width or height, pixels",
       "LGHD_MAX_TEXTURE_SIZE");
+  add("--max-texture-mb", limits.maxTextureMb,
+      "all texture images of one scene, decoded to RGBA8, MiB", "LGHD_MAX_TEXTURE_MB");
   add("--max-batch", limits.maxBatch, "thumbnails in one batch (assets x views)", "LGHD_MAX_BATCH");
+}
+
+void addSceneWorkerLimitFlags(CLI::App& app, DaemonConfig& config) {
+  const char* group = "Limits (413 when exceeded)";
+  app.add_option("--scene-worker-memory-mb", config.sceneWorkerMemoryMb,
+                 "memory of the scene parser worker (its data size), MiB")
+      ->envname("LGHD_SCENE_WORKER_MEMORY_MB")
+      ->check(CLI::Range(std::size_t{256}, std::size_t{1} << 30))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--scene-worker-timeout-seconds", config.sceneWorkerTimeoutSeconds,
+                 "time to parse one asset in the scene parser worker")
+      ->envname("LGHD_SCENE_WORKER_TIMEOUT_SECONDS")
+      ->check(CLI::Range(0.1, 86400.0))
+      ->capture_default_str()
+      ->group(group);
 }
 
 void addJobFlags(CLI::App& app, JobLimits& jobs, RawFlags& raw) {
@@ -244,6 +283,7 @@ void applyRawFlags(const RawFlags& raw, DaemonConfig& config) {
   config.limits.maxBodyBytes = raw.maxBodyMb << 20;
   config.testRenderDelay = std::chrono::milliseconds(raw.testRenderDelayMs);
   config.output.readbackBytes = raw.readbackMb << 20;
+  config.sceneWorker = raw.sceneWorker == "on";
   if (!raw.authTokenFile.empty()) config.authToken = readTokenFile(raw.authTokenFile);
   config.jobs.memoryBytes = raw.jobsMemoryMb << 20;
   config.jobs.ttl = fromSeconds<std::chrono::seconds>(raw.jobTtlSeconds);
@@ -265,7 +305,18 @@ lgh::RendererOptions DaemonConfig::rendererOptions() const {
   lgh::RendererOptions options = lgh::cli::rendererOptions(context);
   options.maxTriangles = limits.maxTriangles;
   options.maxTextureSize = limits.maxTextureSize;
+  options.maxTextureBytes = limits.maxTextureMb << 20;
   options.sceneCacheBytes = sceneCacheBytes;
+  if (sceneWorker) {
+    std::error_code error;
+    options.sceneWorker.executable = std::filesystem::read_symlink("/proc/self/exe", error);
+    options.sceneWorker.arguments = {kSceneWorkerFlag};
+    if (!testSceneWorkerCrashMarker.empty()) {
+      options.sceneWorker.arguments.push_back(testSceneWorkerCrashMarker);
+    }
+    options.sceneWorker.memoryBytes = sceneWorkerMemoryMb << 20;
+    options.sceneWorker.timeoutSeconds = sceneWorkerTimeoutSeconds;
+  }
   return options;
 }
 
@@ -294,6 +345,7 @@ ParsedConfig parseConfig(int argc, char** argv) {
   addContextEnvNames(app);
   addRenderFlags(app, config, raw);
   addLimitFlags(app, config.limits, raw);
+  addSceneWorkerLimitFlags(app, config);
   addJobFlags(app, config.jobs, raw);
   try {
     app.parse(argc, argv);

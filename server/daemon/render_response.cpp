@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "capped_header.hpp"
 #include "http_util.hpp"
 #include "lgh/base64.hpp"
 
@@ -44,8 +45,9 @@ void setRenderHeaders(httplib::Response& response, const RenderAnswer& answer) {
   response.set_header("X-Lgh-Cache", result.sceneCacheHit ? "hit" : "miss");
   response.set_header("X-Lgh-Queue-Ms", fmt::format("{:.3f}", answer.queueMs));
   response.set_header("X-Lgh-Render-Ms", fmt::format("{:.3f}", result.timings.get("total")));
-  response.set_header("X-Lgh-Paths", headerJson(result.decisions));
-  response.set_header("X-Lgh-Warnings", headerJson(result.warnings));
+  // Both can grow with the client's scene: capped (capped_header.hpp).
+  response.set_header("X-Lgh-Paths", cappedJsonObject(result.decisions, kPathsHeaderBytes));
+  response.set_header("X-Lgh-Warnings", cappedJsonArray(result.warnings, kWarningsHeaderBytes));
 }
 
 nlohmann::json renderResponseJson(const RenderAnswer& answer) {

@@ -1,7 +1,9 @@
-// Image I/O on libpng (PNG, read), OpenEXR 3.1 (EXR) and stb_image (JPEG, read only): small
+// Image I/O on libpng (PNG, read), OpenEXR 3.1 (EXR) and libjpeg-turbo (JPEG, read only): small
 // enough to ship with the GPU bundle. PNG files are written by the shared encoder (png_writer.hpp).
-// Everything happens in memory: libpng through a read callback, OpenEXR through IStream/OStream
-// subclasses over byte buffers.
+// (JPEG went through stb_image until fuzzing found undefined behaviour in its Huffman table code;
+// stb_image is not meant for untrusted input, libjpeg-turbo is fuzzed continuously upstream, and
+// OpenImageIO uses it too.) Everything happens in memory: libpng through a read callback, OpenEXR
+// through IStream/OStream subclasses over byte buffers.
 #include <climits>
 #include <csetjmp>
 #include <cstdio>
@@ -27,15 +29,8 @@
 #include "lgh/error.hpp"
 #include "lgh/image.hpp"
 
-// stb_image compiled into this file only, JPEG only, from memory only; static so it cannot clash
-// with another copy elsewhere in the process.
-#define STB_IMAGE_IMPLEMENTATION
-#define STB_IMAGE_STATIC
-#define STBI_ONLY_JPEG
-#define STBI_NO_STDIO
-#define STBI_NO_LINEAR
-#define STBI_MAX_DIMENSIONS 16384  // detail::kMaxDecodeDimension; we check before decoding too
-#include <stb_image.h>
+// After <cstdio>: jpeglib.h needs FILE and size_t declared before it.
+#include <jpeglib.h>
 
 namespace lgh::image_io {
 
@@ -189,33 +184,150 @@ Pixels8 readPng(const std::uint8_t* data, std::size_t size, bool rgba, const std
   return result;
 }
 
-// ---- JPEG decoding (stb_image) ----
+// ---- JPEG decoding (libjpeg-turbo) ----
+//
+// libjpeg reports errors through error_exit, which must not return: it longjmps back to the
+// setjmp in one of the *Guarded functions below, which, as for libpng, create no objects with
+// destructors.
 
-struct StbFree {
-  void operator()(stbi_uc* pixels) const { stbi_image_free(pixels); }
+// Progressive JPEGs may hold any number of scans, each a pass over the whole image: a small file
+// with thousands of them costs minutes (libjpeg-turbo's own fuzzers stop at 500).
+constexpr int kMaxJpegScans = 500;
+
+struct JpegError {
+  jpeg_error_mgr manager;  // first: libjpeg hands back a pointer to it
+  std::jmp_buf jump;
+  char message[JMSG_LENGTH_MAX];
 };
 
-// `desiredChannels` 0 keeps the file's channels (1 or 3).
+[[noreturn]] void jpegErrorExit(j_common_ptr info) {
+  auto* error = reinterpret_cast<JpegError*>(info->err);
+  (*info->err->format_message)(info, error->message);
+  std::longjmp(error->jump, 1);
+}
+
+// Warnings (corrupt data that libjpeg can decode around) are not errors, as in OpenImageIO.
+void jpegIgnoreMessage(j_common_ptr /*info*/, int /*level*/) {}
+
+void jpegCountScans(j_common_ptr info) {
+  const auto* decompress = reinterpret_cast<j_decompress_ptr>(info);
+  if (decompress->input_scan_number > kMaxJpegScans) {
+    auto* error = reinterpret_cast<JpegError*>(info->err);
+    std::snprintf(error->message, sizeof(error->message), "more than %d progressive scans",
+                  kMaxJpegScans);
+    std::longjmp(error->jump, 1);
+  }
+}
+
+// A decompressor and its error manager, created and destroyed together.
+class JpegDecoder {
+ public:
+  JpegDecoder() {
+    info_.err = jpeg_std_error(&error_.manager);
+    error_.manager.error_exit = &jpegErrorExit;
+    error_.manager.emit_message = &jpegIgnoreMessage;
+    progress_.progress_monitor = &jpegCountScans;
+    created_ = createGuarded();
+  }
+  ~JpegDecoder() {
+    if (created_) jpeg_destroy_decompress(&info_);
+  }
+  JpegDecoder(const JpegDecoder&) = delete;
+  JpegDecoder& operator=(const JpegDecoder&) = delete;
+
+  bool created() const { return created_; }
+  jpeg_decompress_struct& info() { return info_; }
+  const char* message() const { return error_.message; }
+
+  bool readHeaderGuarded(const std::uint8_t* data, std::size_t size) {
+    if (setjmp(error_.jump)) return false;
+    jpeg_mem_src(&info_, data, static_cast<unsigned long>(size));
+    jpeg_read_header(&info_, TRUE);
+    info_.progress = &progress_;
+    return true;
+  }
+
+  bool startGuarded() {
+    if (setjmp(error_.jump)) return false;
+    jpeg_start_decompress(&info_);
+    return true;
+  }
+
+  bool readRowsGuarded(std::uint8_t* pixels, std::size_t rowBytes) {
+    if (setjmp(error_.jump)) return false;
+    while (info_.output_scanline < info_.output_height) {
+      JSAMPROW row = pixels + static_cast<std::size_t>(info_.output_scanline) * rowBytes;
+      jpeg_read_scanlines(&info_, &row, 1);
+    }
+    jpeg_finish_decompress(&info_);
+    return true;
+  }
+
+ private:
+  bool createGuarded() {
+    error_.message[0] = 0;
+    if (setjmp(error_.jump)) return false;
+    jpeg_create_decompress(&info_);
+    return true;
+  }
+
+  jpeg_decompress_struct info_{};
+  JpegError error_{};
+  jpeg_progress_mgr progress_{};
+  bool created_ = false;
+};
+
+// Adobe CMYK and YCCK JPEGs store inverted ink: R = C * K / 255 (as in OpenImageIO and
+// stb_image).
+void cmykToRgb(const std::vector<std::uint8_t>& cmyk, std::size_t pixels, int channels,
+               std::vector<std::uint8_t>& out) {
+  out.resize(pixels * static_cast<std::size_t>(channels));
+  for (std::size_t i = 0; i < pixels; ++i) {
+    const std::uint8_t* ink = &cmyk[i * 4];
+    for (int c = 0; c < 3; ++c) {
+      out[i * channels + c] = static_cast<std::uint8_t>((ink[c] * ink[3] + 127) / 255);
+    }
+    if (channels == 4) out[i * channels + 3] = 0xFF;
+  }
+}
+
+// `desiredChannels` 0 keeps the file's channels (1, or 3 for colour); 4 gives RGBA.
 Pixels8 readJpeg(const std::uint8_t* data, std::size_t size, int desiredChannels,
                  const std::string& what) {
   if (size > static_cast<std::size_t>(INT_MAX)) {
     throw Error(ErrorCode::TooLarge, "JPEG data over 2 GiB", what);
   }
-  const int length = static_cast<int>(size);
-  int width = 0;
-  int height = 0;
-  int fileChannels = 0;
-  if (!stbi_info_from_memory(data, length, &width, &height, &fileChannels)) {
-    throw brokenImage("JPEG", stbi_failure_reason(), what);
+  JpegDecoder decoder;
+  if (!decoder.created()) throw brokenImage("JPEG", decoder.message(), what);
+  if (!decoder.readHeaderGuarded(data, size)) throw brokenImage("JPEG", decoder.message(), what);
+  jpeg_decompress_struct& info = decoder.info();
+  detail::checkDecodeSize(info.image_width, info.image_height, what);
+  const bool ink = info.jpeg_color_space == JCS_CMYK || info.jpeg_color_space == JCS_YCCK;
+  const bool grey = info.jpeg_color_space == JCS_GRAYSCALE;
+  const int channels = desiredChannels != 0 ? desiredChannels : (grey ? 1 : 3);
+  if (ink) {
+    info.out_color_space = JCS_CMYK;
+  } else if (channels == 4) {
+    info.out_color_space = JCS_EXT_RGBA;
+  } else {
+    info.out_color_space = channels == 1 ? JCS_GRAYSCALE : JCS_RGB;
   }
-  detail::checkDecodeSize(width, height, what);
-  std::unique_ptr<stbi_uc, StbFree> decoded(
-      stbi_load_from_memory(data, length, &width, &height, &fileChannels, desiredChannels));
-  if (!decoded) throw brokenImage("JPEG", stbi_failure_reason(), what);
-  const int channels = desiredChannels != 0 ? desiredChannels : fileChannels;
-  const std::size_t count = static_cast<std::size_t>(width) * height * channels;
-  return {
-      width, height, channels, std::vector<std::uint8_t>(decoded.get(), decoded.get() + count), {}};
+  if (!decoder.startGuarded()) throw brokenImage("JPEG", decoder.message(), what);
+  const int outputChannels = info.output_components;
+  const std::size_t width = info.output_width;
+  const std::size_t height = info.output_height;
+  std::vector<std::uint8_t> decoded(width * height * static_cast<std::size_t>(outputChannels));
+  if (!decoder.readRowsGuarded(decoded.data(), width * static_cast<std::size_t>(outputChannels))) {
+    throw brokenImage("JPEG", decoder.message(), what);
+  }
+  Pixels8 result{static_cast<int>(width), static_cast<int>(height), channels, {}, {}};
+  if (ink) {
+    cmykToRgb(decoded, width * height, channels == 1 ? 3 : channels, result.pixels);
+    if (channels == 1) result.channels = 3;
+  } else {
+    result.pixels = std::move(decoded);
+  }
+  return result;
 }
 
 // ---- OpenEXR streams over memory ----

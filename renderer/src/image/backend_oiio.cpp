@@ -246,6 +246,13 @@ Decoded decode(const std::vector<std::uint8_t>& bytes, const std::string& what) 
 }
 
 Image8 decodeTextureRgba8(const std::uint8_t* data, std::size_t size, const std::string& what) {
+  // glTF textures are PNG or JPEG. OpenImageIO would probe every format it has a reader for
+  // (TIFF, DPX, PSD, ...), which is far more code for hostile bytes to reach; the lean backend
+  // reads these two only, and so does this one.
+  const FileKind kind = size == 0 ? FileKind::Unknown : detail::sniffFileKind(data, size);
+  if (size > 0 && kind != FileKind::Png && kind != FileKind::Jpeg) {
+    throw Error(ErrorCode::Invalid, "texture is not a PNG or JPEG image", what);
+  }
   OpenInput opened = openFromMemory(data, size, what);
   const OIIO::ImageSpec& spec = opened.input->spec();
   // Grey, grey + alpha, RGB or RGBA; extra channels (e.g. depth) are not part of a texture.

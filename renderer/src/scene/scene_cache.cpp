@@ -12,6 +12,7 @@
 #include "scene/atrium_scene.hpp"
 #include "scene/demo_scene.hpp"
 #include "scene/gltf/gltf_loader.hpp"
+#include "scene/worker/scene_worker.hpp"
 
 namespace lgh {
 namespace {
@@ -28,10 +29,15 @@ std::uint64_t fnv1a(const std::vector<std::uint8_t>& bytes) {
 }  // namespace
 
 SceneCache::SceneCache(const RendererOptions& options) : options_(options) {
+  if (!options_.sceneWorker.executable.empty()) {
+    worker_ = std::make_unique<worker::SceneWorker>(options_.sceneWorker);
+  }
   GLfloat anisotropy = 1.0F;
   glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &anisotropy);
   maxAnisotropy_ = anisotropy;
 }
+
+SceneCache::~SceneCache() = default;
 
 namespace {
 
@@ -50,7 +56,8 @@ std::string optionsKey(const SceneLoadOptions& options) {
 
 std::string SceneCache::keyFor(const SceneSource& source, const SceneLoadOptions& options) const {
   const std::string base = sourceKey(source);
-  return base.empty() || source.kind == SceneSource::Kind::Builtin ? base : base + optionsKey(options);
+  return base.empty() || source.kind == SceneSource::Kind::Builtin ? base
+                                                                 : base + optionsKey(options);
 }
 
 std::string SceneCache::sourceKey(const SceneSource& source) const {
@@ -85,32 +92,28 @@ std::string SceneCache::sourceKey(const SceneSource& source) const {
 
 namespace {
 
-Scene loadScene(const RendererOptions& rendererOptions, const SceneSource& source,
-                const SceneLoadOptions& options) {
+// Built-in scenes are made here; assets are parsed by the scene parser worker when there is one
+// (untrusted bytes never parsed in this process), else here.
+Scene loadScene(const RendererOptions& rendererOptions, worker::SceneWorker* worker,
+                const SceneSource& source, const SceneLoadOptions& options) {
+  if (source.kind == SceneSource::Kind::Builtin) {
+    return source.builtin == BuiltinScene::Atrium ? makeAtriumScene() : makeDemoScene();
+  }
   SceneLoadLimits limits;
   limits.maxTriangles = rendererOptions.maxTriangles;
   limits.maxTextureSize = rendererOptions.maxTextureSize;
-  switch (source.kind) {
-    case SceneSource::Kind::Builtin:
-      return source.builtin == BuiltinScene::Atrium ? makeAtriumScene() : makeDemoScene();
-    case SceneSource::Kind::InlineGlb:
-      return loadGlbBytes(source.glbBytes,
-                          source.displayName.empty() ? "inline.glb" : source.displayName, limits,
-                          options);
-    case SceneSource::Kind::UploadedGltf:
-      return loadGltfFromMemory(source.gltfFileName, source.uploadedFiles, limits, options);
-    case SceneSource::Kind::AssetPath:
-      return loadGltfFile(rendererOptions.assetRoot, source.assetPath, limits, options);
-  }
-  return makeDemoScene();
+  limits.maxTextureBytes = rendererOptions.maxTextureBytes;
+  if (worker != nullptr) return worker->load({source, rendererOptions.assetRoot, limits, options});
+  return loadSceneSource(source, rendererOptions.assetRoot, limits, options);
 }
 
 }  // namespace
 
 SceneCache::Parsed SceneCache::parse(const RendererOptions& rendererOptions,
-                                     const SceneSource& source, const SceneLoadOptions& options) {
+                                     worker::SceneWorker* worker, const SceneSource& source,
+                                     const SceneLoadOptions& options) {
   const Stopwatch timer;
-  Parsed parsed{loadScene(rendererOptions, source, options), 0.0};
+  Parsed parsed{loadScene(rendererOptions, worker, source, options), 0.0};
   parsed.loadMs = timer.elapsedMs();
   return parsed;
 }
@@ -136,9 +139,10 @@ void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& opt
   if (prefetches_.size() >= kMaxPrefetches) return;
   try {
     prefetches_.emplace(
-        key, std::async(std::launch::async, [rendererOptions = options_, source, options] {
-          return parse(rendererOptions, source, options);
-        }));
+        key, std::async(std::launch::async,
+                        [rendererOptions = options_, worker = worker_.get(), source, options] {
+                          return parse(rendererOptions, worker, source, options);
+                        }));
   } catch (const std::system_error& error) {
     spdlog::warn("scene cache: no thread for a prefetch ({}); the scene is parsed when drawn",
                  error.what());
@@ -166,7 +170,7 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
     parsed = parsing.get();  // rethrows the parse's error
     lookup.prefetched = true;
   } else {
-    parsed = parse(options_, source, options);
+    parsed = parse(options_, worker_.get(), source, options);
   }
   entry->scene = std::move(parsed.scene);
   lookup.loadMs = parsed.loadMs;

@@ -20,6 +20,10 @@
 
 namespace lgh {
 
+namespace worker {
+class SceneWorker;
+}
+
 // The acceleration structures of a cached scene, built by the first shadowed frame that draws it
 // and kept while the tracer that built them lives (`epoch`: ShadowDevice::epoch()).
 struct TraceSceneSlot {
@@ -53,6 +57,9 @@ struct CachedScene {
 class SceneCache {
  public:
   explicit SceneCache(const RendererOptions& options);
+  ~SceneCache();
+  SceneCache(const SceneCache&) = delete;
+  SceneCache& operator=(const SceneCache&) = delete;
 
   struct Lookup {
     std::shared_ptr<CachedScene> entry;
@@ -81,13 +88,15 @@ class SceneCache {
     Scene scene;
     double loadMs = 0.0;
   };
-  static Parsed parse(const RendererOptions& rendererOptions, const SceneSource& source,
-                      const SceneLoadOptions& options);
+  // In the scene parser worker when there is one (untrusted bytes never parsed here).
+  static Parsed parse(const RendererOptions& rendererOptions, worker::SceneWorker* worker,
+                      const SceneSource& source, const SceneLoadOptions& options);
   std::string sourceKey(const SceneSource& source) const;
   void evictOverBudget();
-  std::map<std::string, std::future<Parsed>> prefetches_;  // by key
-
   RendererOptions options_;
+  std::unique_ptr<worker::SceneWorker> worker_;
+  // By key. Declared after worker_ so that its parses (which may use the worker) end first.
+  std::map<std::string, std::future<Parsed>> prefetches_;
   float maxAnisotropy_ = 1.0F;
   struct Slot {
     std::string key;

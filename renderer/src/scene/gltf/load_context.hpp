@@ -35,6 +35,7 @@ struct LoadContext {
   std::map<std::string, Error> fileErrors;  // missing / too large side files, by URI
   std::map<int, Image8> images;             // decoded, by glTF image index
   std::map<int, Error> imageErrors;         // decode failures, by glTF image index
+  std::size_t decodedTextureBytes = 0;      // of all images decoded so far
   std::vector<std::string> warnings;
 
   void warnOnce(const std::string& warning) {
@@ -50,7 +51,8 @@ struct LoadContext {
 // Throws lgh::Error(TooLarge, message), naming the asset.
 [[noreturn]] void tooLarge(const LoadContext& ctx, const std::string& message);
 
-// "mesh 3 ('Teapot')", or "mesh 3" when unnamed: how messages name glTF objects.
-std::string label(const char* kind, int index, const std::string& name);
+// "/meshes/3 ('Teapot')", or "/meshes/3" when unnamed: how messages name glTF objects, by the
+// JSON pointer of the object (`array` is the document's array: "meshes", "nodes", ...).
+std::string label(const char* array, int index, const std::string& name);
 
 }  // namespace lgh::gltf

@@ -81,6 +81,7 @@ class PrimitiveConverter {
 
   // The UV set the material's normal map (or clearcoat normal map) uses; -1 without one.
   int tangentUvSet(int material) const;
+  bool hasClearcoatNormalTexture(int material) const;
 
   void finishTangents(Primitive& primitive, bool hasTangents, int uvSet,
                       const std::string& owner) const;
