@@ -293,8 +293,10 @@ TEST(Contract, JobSchemaDefaultsAreTheParsers) {
 // --- Errors and metrics ------------------------------------------------------------------------
 
 TEST(Contract, ErrorCodesAreTheDaemons) {
-  std::set<std::string> codes = {"unauthorized",       "length_required", "queue_full",
-                                 "method_not_allowed", "not_acceptable",  "conflict"};
+  std::set<std::string> codes = {"unauthorized",    "length_required",
+                                 "queue_full",      "method_not_allowed",
+                                 "not_acceptable",  "conflict",
+                                 "http_version_not_supported"};
   for (lgh::ErrorCode code :
        {lgh::ErrorCode::BadRequest, lgh::ErrorCode::NotFound, lgh::ErrorCode::TooLarge,
         lgh::ErrorCode::Invalid, lgh::ErrorCode::Unavailable, lgh::ErrorCode::Timeout,
