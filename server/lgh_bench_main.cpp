@@ -29,7 +29,7 @@ int main(int argc, char** argv) try {
   std::vector<lgh::bench::Command> commands{
       lgh::bench::addConstructCommand(app, context), lgh::bench::addRenderCommand(app, context),
       lgh::bench::addSceneLoadCommand(app, context), lgh::bench::addShadowsCommand(app, context),
-      lgh::bench::addHandoffCommand(app, context), lgh::bench::addGiCommand(app, context),
+      lgh::bench::addHandoffCommand(app, context),   lgh::bench::addGiCommand(app, context),
       lgh::bench::addPngCommand(app, context)};
   CLI11_PARSE(app, argc, argv);
   lgh::cli::setUpLogging(context.logLevel);

@@ -204,13 +204,20 @@ void closeIfBodyUnread(const httplib::Request& request, httplib::Response& respo
 
 const std::vector<RouteSpec>& routeTable() {
   static const std::vector<RouteSpec> routes = {
-      {"/v1/render", {"POST"}, {}},          {"/v1/thumbnails", {"POST"}, {}},
-      {"/v1/jobs", {"POST"}, {kJson}},       {"/v1/jobs/{id}", {"GET", "DELETE"}, {kJson}},
-      {"/v1/jobs/{id}/result", {"GET"}, {}}, {"/v1/info", {"GET"}, {kJson}},
-      {"/healthz", {"GET"}, {kJson}},        {"/readyz", {"GET"}, {kJson}},
-      {"/metrics", {"GET"}, {"text/plain"}}, {"/openapi.json", {"GET"}, {kJson}},
-      {"/v1/benchmark", {"POST", "GET"}, {kJson}}, {"/v1/benchmark/result", {"GET"}, {kJson}},
-      {"/{schema}", {"GET"}, {kJson}},       {"/proto/{schema}", {"GET"}, {kJson}},
+      {"/v1/render", {"POST"}, {}},
+      {"/v1/thumbnails", {"POST"}, {}},
+      {"/v1/jobs", {"POST"}, {kJson}},
+      {"/v1/jobs/{id}", {"GET", "DELETE"}, {kJson}},
+      {"/v1/jobs/{id}/result", {"GET"}, {}},
+      {"/v1/info", {"GET"}, {kJson}},
+      {"/healthz", {"GET"}, {kJson}},
+      {"/readyz", {"GET"}, {kJson}},
+      {"/metrics", {"GET"}, {"text/plain"}},
+      {"/openapi.json", {"GET"}, {kJson}},
+      {"/v1/benchmark", {"POST", "GET"}, {kJson}},
+      {"/v1/benchmark/result", {"GET"}, {kJson}},
+      {"/{schema}", {"GET"}, {kJson}},
+      {"/proto/{schema}", {"GET"}, {kJson}},
   };
   return routes;
 }

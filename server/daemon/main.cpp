@@ -39,8 +39,8 @@ void stopListening(httplib::Server& server, const std::atomic<bool>& listenRetur
 }
 
 void shutdownSequence(const DaemonConfig& config, RenderQueue& queue, JobStore& jobs,
-                      BenchmarkRunner& benchmarks,
-                      httplib::Server& server, const std::atomic<bool>& listenReturned) {
+                      BenchmarkRunner& benchmarks, httplib::Server& server,
+                      const std::atomic<bool>& listenReturned) {
   logging::event(spdlog::level::info, "shutdown", {{"grace_ms", config.grace.count()}});
   queue.stopAccepting();
   stopListening(server, listenReturned);

@@ -293,9 +293,12 @@ TEST(Contract, JobSchemaDefaultsAreTheParsers) {
 // --- Errors and metrics ------------------------------------------------------------------------
 
 TEST(Contract, ErrorCodesAreTheDaemons) {
-  std::set<std::string> codes = {"unauthorized",    "length_required",
-                                 "queue_full",      "method_not_allowed",
-                                 "not_acceptable",  "conflict",
+  std::set<std::string> codes = {"unauthorized",
+                                 "length_required",
+                                 "queue_full",
+                                 "method_not_allowed",
+                                 "not_acceptable",
+                                 "conflict",
                                  "http_version_not_supported"};
   for (lgh::ErrorCode code :
        {lgh::ErrorCode::BadRequest, lgh::ErrorCode::NotFound, lgh::ErrorCode::TooLarge,

@@ -48,8 +48,7 @@ struct SeedDir {
 
 const fs::path& seedDir() {
   static const SeedDir dir{[] {
-    fs::path made =
-        fs::temp_directory_path() / ("lgh-fuzz-seeds-" + std::to_string(::getpid()));
+    fs::path made = fs::temp_directory_path() / ("lgh-fuzz-seeds-" + std::to_string(::getpid()));
     fs::remove_all(made);
     const std::string command =
         "python3 '" LGH_TEST_DATA_DIR "/fuzz/make-seed-corpora' '" + made.string() + "'";

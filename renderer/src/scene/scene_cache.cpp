@@ -57,7 +57,7 @@ std::string optionsKey(const SceneLoadOptions& options) {
 std::string SceneCache::keyFor(const SceneSource& source, const SceneLoadOptions& options) const {
   const std::string base = sourceKey(source);
   return base.empty() || source.kind == SceneSource::Kind::Builtin ? base
-                                                                 : base + optionsKey(options);
+                                                                   : base + optionsKey(options);
 }
 
 std::string SceneCache::sourceKey(const SceneSource& source) const {
