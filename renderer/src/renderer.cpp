@@ -115,7 +115,7 @@ struct Renderer::Impl {
     return true;
   }
   std::uint64_t submit(const RenderRequest& request);
-  RenderResult take(std::deque<PendingFrame>::iterator frame);
+  RenderResult take(const std::deque<PendingFrame>::iterator& frame);
 };
 
 Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {}
@@ -230,7 +230,7 @@ std::uint64_t Renderer::Impl::submit(const RenderRequest& request) {
   return pending.back().id;
 }
 
-RenderResult Renderer::Impl::take(std::deque<PendingFrame>::iterator frame) {
+RenderResult Renderer::Impl::take(const std::deque<PendingFrame>::iterator& frame) {
   waitFor(*frame);
   FrameReport& report = frame->report;
   report.timings.add("frame wait", TimingRow::Clock::Cpu,
