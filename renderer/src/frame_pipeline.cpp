@@ -1,9 +1,13 @@
 #include "frame_pipeline.hpp"
 
+#include <algorithm>
+
+#include <fmt/format.h>
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "core/stopwatch.hpp"
 #include "passes/light_buffer.hpp"
+#include "scene/material_table.hpp"
 
 namespace lgh {
 namespace {
@@ -15,6 +19,19 @@ LightDesc directionalLight(const glm::vec3& direction, float intensity) {
   light.direction = {d.x, d.y, d.z};
   light.intensity = intensity;
   return light;
+}
+
+// What the scene's textures take on the GPU, and what block compression saved.
+std::string textureMemoryText(const GpuScene::TextureMemory& memory) {
+  constexpr double kMiB = 1024.0 * 1024.0;
+  auto mib = [](std::size_t bytes) { return static_cast<double>(bytes) / kMiB; };
+  std::string text = fmt::format("{:.2f} MiB in {} textures", mib(memory.bytes), memory.textures);
+  if (memory.compressed > 0) {
+    const std::size_t saved = memory.uncompressedBytes - std::min(memory.bytes, memory.uncompressedBytes);
+    text += fmt::format(" ({} block-compressed; {:.2f} MiB as RGBA8, saved {:.2f} MiB)",
+                        memory.compressed, mib(memory.uncompressedBytes), mib(saved));
+  }
+  return text;
 }
 
 }  // namespace
@@ -47,11 +64,16 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   const std::vector<LightDesc> lights = frameLights(request, cached.scene, camera, report.warnings);
   const LghSettings& lgh = request.settings.lgh;
   const ShadowSettings& shadowSettings = request.settings.shadows;
+  // The scene's materials with the request's parameters (docs/MATERIALS.md), for this frame.
+  const MaterialTable materials(cached.scene, request.materials);
   targets_.resize(output.width, output.height);
   uploadLights(lights, lightBuffer_);
+  const auto lightCount = static_cast<int>(lights.size());
   {
     gl::ScopedGpuPass pass(timer, "gbuffer");
-    gbufferPass_.run(cached.scene, *cached.gpu, camera, request.settings.primitives, targets_);
+    gbufferPass_.run({&materials, &camera, &request.settings.primitives, lightBuffer_.id(),
+                      lightCount},
+                     *cached.gpu, targets_);
   }
   LghFrameLighting::ShadowSamples samples;
   if (lgh.enabled) {
@@ -59,7 +81,6 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
     lghLighting_->run(lgh, cached, camera, targets_, timer, report, probe);
     samples = lghLighting_->shadowSamples();
   }
-  const auto lightCount = static_cast<int>(lights.size());
   shadows_.trace(
       {shadowSettings, lgh.seed, lightBuffer_.id(), lightCount, samples.buffer, samples.count},
       cached, targets_, timer, report);
@@ -75,6 +96,14 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
     gl::ScopedGpuPass pass(timer, "composite");
     compositePass_.run(output, lgh.enabled, shadowRatio, targets_);
   }
+  if (ForwardBlendPass::needed(materials, *cached.gpu)) {
+    gl::ScopedGpuPass pass(timer, "forward blend");
+    const int blended = forwardBlendPass_.run(
+        {&materials, &camera, &request.settings.primitives, lightBuffer_.id(), lightCount,
+         request.settings.ambient, gbufferPass_.maxTessellationLevel()},
+        gbufferPass_.programs(), *cached.gpu, targets_);
+    report.decide("blended_surfaces", std::to_string(blended));
+  }
   const Stopwatch readback;
   report.image = readbackFinal(targets_);
   const double readbackMs = readback.elapsedMs();
@@ -84,6 +113,8 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   report.timings.add("readback", TimingRow::Clock::Cpu, readbackMs);
   report.decide("lighting", lgh.enabled ? "direct+lgh" : "direct");
   report.decide("lights", std::to_string(lights.size()));
+  report.decide("texture_memory", textureMemoryText(cached.gpu->textureMemory()));
+  for (std::string& warning : cached.gpu->takeWarnings()) report.warnings.push_back(std::move(warning));
 }
 
 }  // namespace lgh

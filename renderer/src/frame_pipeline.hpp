@@ -1,7 +1,7 @@
 // The order of one frame's passes (docs/ARCHITECTURE.md, "One frame"): G-buffer -> [VPLs + LGH
 // build + LGH lighting into the indirect target, picking k shadow samples per pixel] -> shadow
 // rays (GL setup, Vulkan trace) -> direct lighting with visibility -> [LGH shadow ratio +
-// filter] -> composite -> readback. Owns the passes and the frame targets; the renderer owns the
+// filter] -> composite -> [forward pass of blended surfaces] -> readback. Owns the passes and the frame targets; the renderer owns the
 // context and the scene cache. The LGH part (passes/lgh_frame_lighting.hpp) is created on the first
 // frame that enables it, so frames without it run exactly as before.
 #pragma once
@@ -12,6 +12,7 @@
 #include "gl/gpu_timer.hpp"
 #include "passes/composite_pass.hpp"
 #include "passes/direct_lighting_pass.hpp"
+#include "passes/forward_blend_pass.hpp"
 #include "passes/frame_targets.hpp"
 #include "passes/gbuffer_pass.hpp"
 #include "passes/lgh_frame_lighting.hpp"
@@ -39,6 +40,7 @@ class FramePipeline {
   ShadowFrame shadows_;
   DirectLightingPass directLightingPass_;
   CompositePass compositePass_;
+  ForwardBlendPass forwardBlendPass_;
   std::unique_ptr<LghFrameLighting> lghLighting_;
 };
 

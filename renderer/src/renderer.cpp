@@ -71,6 +71,7 @@ RenderResult Renderer::renderFrame(const RenderRequest& request) {
   loadOptions.animation = request.sceneOptions.animation;
   loadOptions.materialVariant = request.sceneOptions.materialVariant;
   loadOptions.ignoreUnsupportedExtensions = request.settings.ignoreUnsupportedExtensions;
+  loadOptions.textureCompression = request.settings.textureCompression;
   SceneCache::Lookup lookup = impl_->cache.get(request.scene, loadOptions);
   report.decide("scene_cache", lookup.hit ? "hit" : "miss");
   report.timings.add("scene load", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.loadMs);

@@ -44,11 +44,18 @@ std::string optionsKey(const SceneLoadOptions& options) {
   return key;
 }
 
+// Texture compression changes the upload, whatever the source (the demo included).
+std::string uploadKey(const SceneLoadOptions& options) {
+  return options.textureCompression == TextureCompression::Bc ? "|bc" : "";
+}
+
 }  // namespace
 
 std::string SceneCache::keyFor(const SceneSource& source, const SceneLoadOptions& options) const {
   const std::string base = sourceKey(source);
-  return base.empty() || source.kind == SceneSource::Kind::Demo ? base : base + optionsKey(options);
+  if (base.empty()) return base;
+  if (source.kind == SceneSource::Kind::Demo) return base + uploadKey(options);
+  return base + optionsKey(options) + uploadKey(options);
 }
 
 std::string SceneCache::sourceKey(const SceneSource& source) const {
@@ -116,7 +123,8 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
   entry->scene = load(source, options);
   lookup.loadMs = loadTimer.elapsedMs();
   const Stopwatch uploadTimer;
-  entry->gpu = std::make_unique<GpuScene>(entry->scene, maxAnisotropy_);
+  entry->gpu = std::make_unique<GpuScene>(
+      entry->scene, GpuSceneOptions{maxAnisotropy_, options.textureCompression});
   lookup.uploadMs = uploadTimer.elapsedMs();
   lookup.entry = entry;
   slots_.push_front({key, entry});

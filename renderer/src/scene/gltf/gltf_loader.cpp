@@ -65,7 +65,8 @@ const std::set<std::string, std::less<>> kSupportedExtensions = {"KHR_lights_pun
                                                                  "KHR_materials_variants",
                                                                  "KHR_draco_mesh_compression",
                                                                  "EXT_meshopt_compression",
-                                                                 "EXT_texture_webp"};
+                                                                 "EXT_texture_webp",
+                                                                 "MSFT_texture_dds"};
 
 constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
 constexpr std::uint32_t kGlbJsonChunk = 0x4E4F534A;

@@ -14,6 +14,7 @@
 
 #include "lgh/error.hpp"
 #include "lgh/image.hpp"
+#include "scene/block_compression.hpp"
 #include "scene/gltf/gltf_loader.hpp"
 
 namespace lgh::gltf {
@@ -34,6 +35,7 @@ struct LoadContext {
   std::optional<Error> fatal;               // a sandbox violation: always fails the load
   std::map<std::string, Error> fileErrors;  // missing / too large side files, by URI
   std::map<int, Image8> images;             // decoded, by glTF image index
+  std::map<int, BlockCompressedImage> blockImages;  // DDS blocks as loaded, by glTF image index
   std::map<int, Error> imageErrors;         // decode failures, by glTF image index
   std::vector<std::string> warnings;
 
