@@ -153,7 +153,7 @@ Material dielectric(const std::string& name, const glm::vec3& color) {
   return material;
 }
 
-// The lecture's models side by side, one diffuse colour for all but the Cook-Torrance metal.
+// The lecture's models side by side, all the same clay colour (Cook-Torrance as plastic).
 void addModelRowMaterials(std::vector<Material>& materials) {
   const glm::vec3 clay(0.75F, 0.42F, 0.25F);
   Material ggx = dielectric("model_metallic_roughness", clay);
@@ -177,10 +177,10 @@ void addModelRowMaterials(std::vector<Material>& materials) {
   orenNayar.name = "model_oren_nayar";
   orenNayar.classic.sigma = 0.8F;
   materials.push_back(orenNayar);
-  Material cookTorrance = dielectric("model_cook_torrance", glm::vec3(0.0F));
+  Material cookTorrance = dielectric("model_cook_torrance", clay);
   cookTorrance.model = MaterialModel::CookTorrance;
-  cookTorrance.classic.f0 = glm::vec3(1.0F, 0.78F, 0.34F);  // gold
-  cookTorrance.classic.m = 0.25F;
+  cookTorrance.classic.f0 = glm::vec3(0.04F);  // plastic
+  cookTorrance.classic.m = 0.3F;
   materials.push_back(cookTorrance);
 }
 

@@ -12,7 +12,7 @@
 //  - the lecture's illumination models side by side: six spheres of radius 0.1 on the floor at
 //    z = 0.82, x = -0.75 .. 0.75 every 0.3, left to right glTF metallic-roughness (roughness
 //    0.35), Phong (shininess 40), Blinn-Phong (shininess 160), Lambert (Oren-Nayar at sigma 0),
-//    Oren-Nayar (sigma 0.8), all clay-coloured, and a gold Cook-Torrance metal (m 0.25).
+//    Oren-Nayar (sigma 0.8) and Cook-Torrance plastic (F0 0.04, m 0.3), all clay-coloured.
 // Dielectrics are glTF PBR with roughness 0.8, metallic 0.
 //
 // Materials, by index (what a request's materials[].match.index names): 0 floor_checker, 1
