@@ -300,7 +300,10 @@ vec3 reliefIntersection(vec3 viewTangent, vec2 uv, vec2 gradX, vec2 gradY) {
 }
 
 // Whether the height field hides a light (tangent-space direction toLight) from the point found
-// at `hit`: the ray towards the light, marched up to the top.
+// at `hit`: the ray towards the light, marched up to the top. Heights within RELIEF_SHADOW_BIAS
+// (of the relief's depth) above the ray do not count: fine noise would otherwise shadow itself
+// in speckles (acne).
+#define RELIEF_SHADOW_BIAS 0.08
 bool reliefShadowed(vec3 hit, vec3 lightTangent, vec2 gradX, vec2 gradY) {
   if (lightTangent.z <= 0.0 || hit.z <= 0.0) return false;
   vec2 perDepth = tangentToUv(lightTangent.xy / max(lightTangent.z, 0.05)) * uHeightScale;
@@ -309,7 +312,7 @@ bool reliefShadowed(vec3 hit, vec3 lightTangent, vec2 gradX, vec2 gradY) {
   for (int i = 1; i < steps; ++i) {
     float depth = hit.z - step * float(i);
     vec2 uv = hit.xy + perDepth * (hit.z - depth);
-    if (1.0 - heightAt(uv, gradX, gradY) < depth - 0.5 * step) return true;
+    if (1.0 - heightAt(uv, gradX, gradY) < depth - RELIEF_SHADOW_BIAS) return true;
   }
   return false;
 }

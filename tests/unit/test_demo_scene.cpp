@@ -147,10 +147,11 @@ TEST_F(DemoScene, MaterialsAndCheckerTexture) {
   EXPECT_TRUE(metallicSphere);
   EXPECT_TRUE(emissivePanel);
   ASSERT_TRUE(materials[0].baseColorTexture.valid());
-  // The checker, a brick height map, its normal map and a light map, each a texture by index.
-  ASSERT_EQ(scene().images.size(), 4U);
-  ASSERT_EQ(scene().textures.size(), 4U);
-  for (int i = 0; i < 4; ++i) EXPECT_EQ(scene().textures[static_cast<std::size_t>(i)].image, i);
+  // The checker, a brick height map, its normal map, a light map and the bricks' colour, each a
+  // texture by index.
+  ASSERT_EQ(scene().images.size(), 5U);
+  ASSERT_EQ(scene().textures.size(), 5U);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(scene().textures[static_cast<std::size_t>(i)].image, i);
   const lgh::Image8& checker = scene().images[0];
   EXPECT_EQ(checker.channels, 4);
   ASSERT_EQ(checker.pixels.size(), static_cast<std::size_t>(checker.width) * checker.height * 4);

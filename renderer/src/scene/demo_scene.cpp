@@ -136,12 +136,18 @@ Mesh makeCeilingPanel() {
 
 // The demo's images, also its textures (Scene::textures, by the same index): what a request's
 // material parameters may name.
-enum DemoTexture { kCheckerTexture, kBrickHeightTexture, kBrickNormalTexture, kLightMapTexture };
+enum DemoTexture {
+  kCheckerTexture,
+  kBrickHeightTexture,
+  kBrickNormalTexture,
+  kLightMapTexture,
+  kBrickColorTexture
+};
 
 std::vector<Image8> makeImages() {
   const Image8 bricks = makeBrickHeightImage(128, 8);
   return {makeCheckerImage(256, 8, 200, 90), bricks, makeNormalMapImage(bricks, 6.0F),
-          makeLightMapImage(64)};
+          makeLightMapImage(64), makeBrickColorImage(128, 8)};
 }
 
 Material dielectric(const std::string& name, const glm::vec3& color) {
@@ -180,7 +186,7 @@ void addModelRowMaterials(std::vector<Material>& materials) {
   Material cookTorrance = dielectric("model_cook_torrance", clay);
   cookTorrance.model = MaterialModel::CookTorrance;
   cookTorrance.classic.f0 = glm::vec3(0.04F);  // plastic
-  cookTorrance.classic.m = 0.3F;
+  cookTorrance.classic.m = 0.15F;
   materials.push_back(cookTorrance);
 }
 

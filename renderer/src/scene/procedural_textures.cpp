@@ -45,22 +45,72 @@ Image8 makeCheckerImage(int size, int tiles, std::uint8_t light, std::uint8_t da
   return image;
 }
 
-Image8 makeBrickHeightImage(int size, int rows) {
-  Image8 image = blank(size, size);
+namespace {
+
+// Where a texel lies in the brick pattern: the brick's number and the distance to its edge (in
+// course heights, 0 at the mortar's middle).
+struct BrickTexel {
+  int brick;
+  float edge;
+};
+
+BrickTexel brickAt(int x, int y, int size, int rows) {
   const float courseHeight = 1.0F / static_cast<float>(rows);
   const float brickWidth = 2.0F * courseHeight;
-  constexpr float kMortar = 0.08F;  // of a course
-  constexpr float kBevel = 0.12F;
+  const float u = (static_cast<float>(x) + 0.5F) / static_cast<float>(size);
+  const float v = (static_cast<float>(y) + 0.5F) / static_cast<float>(size);
+  const int course = static_cast<int>(v / courseHeight);
+  const float shift = course % 2 == 0 ? 0.0F : 0.5F * brickWidth;
+  const float shifted = u + shift;
+  const int column = static_cast<int>(shifted / brickWidth);
+  const float inU = std::fmod(shifted, brickWidth) / brickWidth;  // 0..1 across a brick
+  const float inV = std::fmod(v, courseHeight) / courseHeight;
+  return {course * 97 + column, std::min({inU * 2.0F, (1.0F - inU) * 2.0F, inV, 1.0F - inV})};
+}
+
+constexpr float kMortar = 0.08F;  // of a course
+constexpr float kBevel = 0.12F;
+
+}  // namespace
+
+Image8 makeBrickColorImage(int size, int rows) {
+  Image8 image = blank(size, size);
   for (int y = 0; y < size; ++y) {
     for (int x = 0; x < size; ++x) {
-      const float u = (static_cast<float>(x) + 0.5F) / static_cast<float>(size);
-      const float v = (static_cast<float>(y) + 0.5F) / static_cast<float>(size);
-      const int course = static_cast<int>(v / courseHeight);
-      const float shift = course % 2 == 0 ? 0.0F : 0.5F * brickWidth;
-      const float inU = std::fmod(u + shift, brickWidth) / brickWidth;  // 0..1 across a brick
-      const float inV = std::fmod(v, courseHeight) / courseHeight;
-      // Distance to the brick's edge in course units, the mortar at 0.
-      const float edge = std::min({inU * 2.0F, (1.0F - inU) * 2.0F, inV, 1.0F - inV});
+      const BrickTexel brick = brickAt(x, y, size, rows);
+      std::uint8_t* p = texel(image, x, y);
+      if (brick.edge < kMortar) {
+        p[0] = p[1] = p[2] = toByte(0.72F + 0.06F * noise(x, y));
+        continue;
+      }
+      const float shade = 0.8F + 0.2F * noise(brick.brick, 17) + 0.06F * noise(x, y);
+      p[0] = toByte(0.62F * shade);
+      p[1] = toByte(0.27F * shade);
+      p[2] = toByte(0.18F * shade);
+    }
+  }
+  return image;
+}
+
+Image8 makeHoleAlphaImage(int size, int cells) {
+  Image8 image = blank(size, size);
+  const float cell = static_cast<float>(size) / static_cast<float>(cells);
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      const float cx = std::fmod(static_cast<float>(x) + 0.5F, cell) / cell - 0.5F;
+      const float cy = std::fmod(static_cast<float>(y) + 0.5F, cell) / cell - 0.5F;
+      const float radius = std::sqrt(cx * cx + cy * cy);
+      texel(image, x, y)[3] = toByte((radius - 0.25F) / 0.1F);
+    }
+  }
+  return image;
+}
+
+Image8 makeBrickHeightImage(int size, int rows) {
+  Image8 image = blank(size, size);
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      const float edge = brickAt(x, y, size, rows).edge;
       float height = std::clamp((edge - kMortar) / kBevel, 0.0F, 1.0F);
       height *= 0.9F + 0.1F * noise(x, y);
       std::uint8_t* p = texel(image, x, y);

@@ -15,6 +15,12 @@ Image8 makeCheckerImage(int size, int tiles, std::uint8_t light, std::uint8_t da
 // edges, a little noise on the faces. R = G = B = height, A = 255.
 Image8 makeBrickHeightImage(int size, int rows);
 
+// The colour of the same bricks: red-brown faces varying per brick, light grey mortar (sRGB).
+Image8 makeBrickColorImage(int size, int rows);
+
+// An alpha map: rounded holes (alpha 0) in a grid of `cells` x `cells`, soft-edged, white RGB.
+Image8 makeHoleAlphaImage(int size, int cells);
+
 // The tangent-space normal map of a height map (R), by central differences, wrapping around:
 // `strength` scales the slopes. glTF's convention: +Y (green) points up the image.
 Image8 makeNormalMapImage(const Image8& height, float strength);
