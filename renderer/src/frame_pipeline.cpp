@@ -27,7 +27,8 @@ std::string textureMemoryText(const GpuScene::TextureMemory& memory) {
   auto mib = [](std::size_t bytes) { return static_cast<double>(bytes) / kMiB; };
   std::string text = fmt::format("{:.2f} MiB in {} textures", mib(memory.bytes), memory.textures);
   if (memory.compressed > 0) {
-    const std::size_t saved = memory.uncompressedBytes - std::min(memory.bytes, memory.uncompressedBytes);
+    const std::size_t saved =
+        memory.uncompressedBytes - std::min(memory.bytes, memory.uncompressedBytes);
     text += fmt::format(" ({} block-compressed; {:.2f} MiB as RGBA8, saved {:.2f} MiB)",
                         memory.compressed, mib(memory.uncompressedBytes), mib(saved));
   }
@@ -71,9 +72,9 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   const auto lightCount = static_cast<int>(lights.size());
   {
     gl::ScopedGpuPass pass(timer, "gbuffer");
-    gbufferPass_.run({&materials, &camera, &request.settings.primitives, lightBuffer_.id(),
-                      lightCount},
-                     *cached.gpu, targets_);
+    gbufferPass_.run(
+        {&materials, &camera, &request.settings.primitives, lightBuffer_.id(), lightCount},
+        *cached.gpu, targets_);
   }
   LghFrameLighting::ShadowSamples samples;
   if (lgh.enabled) {
@@ -114,7 +115,10 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   report.decide("lighting", lgh.enabled ? "direct+lgh" : "direct");
   report.decide("lights", std::to_string(lights.size()));
   report.decide("texture_memory", textureMemoryText(cached.gpu->textureMemory()));
-  for (std::string& warning : cached.gpu->takeWarnings()) report.warnings.push_back(std::move(warning));
+  // What unset `sampling.anisotropy` gets, and where a request's value is capped.
+  report.decide("texture_anisotropy", fmt::format("{:g}", cached.gpu->maxAnisotropy()));
+  for (std::string& warning : cached.gpu->takeWarnings())
+    report.warnings.push_back(std::move(warning));
 }
 
 }  // namespace lgh

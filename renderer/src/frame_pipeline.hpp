@@ -1,9 +1,10 @@
 // The order of one frame's passes (docs/ARCHITECTURE.md, "One frame"): G-buffer -> [VPLs + LGH
 // build + LGH lighting into the indirect target, picking k shadow samples per pixel] -> shadow
 // rays (GL setup, Vulkan trace) -> direct lighting with visibility -> [LGH shadow ratio +
-// filter] -> composite -> [forward pass of blended surfaces] -> readback. Owns the passes and the frame targets; the renderer owns the
-// context and the scene cache. The LGH part (passes/lgh_frame_lighting.hpp) is created on the first
-// frame that enables it, so frames without it run exactly as before.
+// filter] -> composite -> [forward pass of blended surfaces] -> readback. Owns the passes and the
+// frame targets; the renderer owns the context and the scene cache. The LGH part
+// (passes/lgh_frame_lighting.hpp) is created on the first frame that enables it, so frames without
+// it run exactly as before.
 #pragma once
 
 #include <memory>

@@ -75,6 +75,7 @@ TEST_F(RenderTest, MaterialParametersApplyToTheirRenderOnly) {
   const json answer = json::parse(changed->body);
   EXPECT_EQ(answer["paths"]["blended_surfaces"], "1");
   EXPECT_NE(answer["paths"]["texture_memory"].get<std::string>().find("MiB"), std::string::npos);
+  EXPECT_GE(std::stof(answer["paths"]["texture_anisotropy"].get<std::string>()), 1.0F);
   EXPECT_EQ(changed->get_header_value("X-Lgh-Cache"), "hit") << "the overrides are not a scene";
   ASSERT_EQ(before->status, 200);
   ASSERT_EQ(after->status, 200);

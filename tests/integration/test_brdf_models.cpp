@@ -82,8 +82,9 @@ class BrdfModels : public ::testing::Test {
                         glm::vec4(light, 0.0F)});
     }
     lgh::gl::Buffer inputBuffer;
-    glNamedBufferStorage(inputBuffer.id(), static_cast<GLsizeiptr>(inputs.size() * sizeof(ProbeInput)),
-                         inputs.data(), 0);
+    glNamedBufferStorage(inputBuffer.id(),
+                         static_cast<GLsizeiptr>(inputs.size() * sizeof(ProbeInput)), inputs.data(),
+                         0);
     lgh::gl::Buffer outputBuffer;
     std::vector<glm::vec4> outputs(inputs.size() * 2);
     glNamedBufferStorage(outputBuffer.id(),
@@ -155,10 +156,11 @@ TEST_F(BrdfModels, OrenNayarAtSigmaZeroIsLambert) {
   const auto lobes = evaluate(lambert, pairs);
   double worst = 0.0;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
-    const glm::vec3 expected = lambert.baseColor * static_cast<float>(1.0 / kPi) * pairs[i].second.z;
+    const glm::vec3 expected =
+        lambert.baseColor * static_cast<float>(1.0 / kPi) * pairs[i].second.z;
     for (int c = 0; c < 3; ++c) {
-      worst = std::max(worst, static_cast<double>(std::abs(lobes[i].diffuse[c] - expected[c]) /
-                                                   expected[c]));
+      worst = std::max(
+          worst, static_cast<double>(std::abs(lobes[i].diffuse[c] - expected[c]) / expected[c]));
     }
     EXPECT_EQ(lobes[i].specular, glm::vec3(0.0F));
   }
@@ -215,10 +217,9 @@ TEST_F(BrdfModels, PhongAndBlinnPhongPeakAtTheMirrorDirection) {
     // incidence, Phong's (cos 10)^60 = 0.40, Blinn-Phong's (cos 5)^60 = 0.80.
     const glm::vec3 off = direction(thetaL + 10.0 * kPi / 180.0, kPi);
     const auto offLobes = evaluate(m, {{off, light}});
-    const double expected = std::pow(std::cos((model == lgh::MaterialModel::Phong ? 10.0 : 5.0) *
-                                              kPi / 180.0),
-                                     60.0) /
-                            kPi;
+    const double expected =
+        std::pow(std::cos((model == lgh::MaterialModel::Phong ? 10.0 : 5.0) * kPi / 180.0), 60.0) /
+        kPi;
     EXPECT_NEAR(offLobes[0].specular.r, expected, 1e-4);
   }
 }
@@ -231,7 +232,7 @@ TEST_F(BrdfModels, CookTorranceAndGgxAreReciprocal) {
   cookTorrance.model = lgh::MaterialModel::CookTorrance;
   cookTorrance.baseColor = glm::vec3(0.6F, 0.3F, 0.1F);
   cookTorrance.specular = glm::vec3(0.9F, 0.6F, 0.3F);  // F0
-  cookTorrance.exponent = 0.35F;                         // m
+  cookTorrance.exponent = 0.35F;                        // m
   Material ggx;
   ggx.baseColor = glm::vec3(0.6F, 0.3F, 0.1F);
   ggx.metallic = 0.3F;
@@ -260,7 +261,7 @@ TEST_F(BrdfModels, WhiteFurnaceBounds) {
   struct Case {
     std::string name;
     Material material;
-    double lowerAtNormal;   // the albedo at normal incidence is at least this
+    double lowerAtNormal;     // the albedo at normal incidence is at least this
     double boundedUpTo = 90;  // view angles (degrees) up to which the albedo is at most 1
   };
   std::vector<Case> cases;
@@ -281,12 +282,12 @@ TEST_F(BrdfModels, WhiteFurnaceBounds) {
     metal.baseColor = glm::vec3(1.0F);
     metal.metallic = 1.0F;
     metal.roughness = roughness;
-    cases.push_back({fmt::format("ggx metal, roughness {}", roughness), metal,
-                     roughness <= 0.4F ? 0.95 : 0.3});
+    cases.push_back(
+        {fmt::format("ggx metal, roughness {}", roughness), metal, roughness <= 0.4F ? 0.95 : 0.3});
     Material dielectric = metal;
     dielectric.metallic = 0.0F;
-    cases.push_back({fmt::format("ggx white dielectric, roughness {}", roughness), dielectric,
-                     0.95, 30.0});
+    cases.push_back(
+        {fmt::format("ggx white dielectric, roughness {}", roughness), dielectric, 0.95, 30.0});
   }
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);

@@ -9,6 +9,7 @@
 // comparison strips of docs/GALLERY.md (scripts/material-gallery).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -28,6 +29,7 @@
 #include "lgh/testing/image_metrics.hpp"
 #include "scene/procedural_textures.hpp"
 #include "scene/scene_cache.hpp"
+#include "scene/texture_upload.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -128,9 +130,10 @@ lgh::Scene techniqueScene(float uvMin = 0.0F, float uvMax = 2.0F) {
   lgh::Scene scene;
   scene.name = "techniques";
   const lgh::Image8 height = lgh::makeBrickHeightImage(128, 8);
-  scene.images = {lgh::makeBrickColorImage(128, 8), height, lgh::makeNormalMapImage(height, 6.0F),
-                  lgh::makeLightMapImage(64),       lgh::makeCheckerImage(64, 8, 230, 40),
-                  lgh::makeHoleAlphaImage(128, 4),  lgh::makeCheckerImage(128, 4, 255, 40)};
+  scene.images = {lgh::makeBrickColorImage(128, 8),      height,
+                  lgh::makeNormalMapImage(height, 6.0F), lgh::makeLightMapImage(64),
+                  lgh::makeCheckerImage(64, 8, 230, 40), lgh::makeHoleAlphaImage(128, 4),
+                  lgh::makeCheckerImage(128, 4, 255, 40)};
   for (int i = 0; i < static_cast<int>(scene.images.size()); ++i) {
     lgh::TextureRef texture;
     texture.image = i;
@@ -204,8 +207,8 @@ class MaterialTechniques : public ::testing::Test {
       lgh::Scene scene, lgh::TextureCompression compression = lgh::TextureCompression::None) {
     auto entry = std::make_shared<lgh::CachedScene>();
     entry->scene = std::move(scene);
-    entry->gpu =
-        std::make_unique<lgh::GpuScene>(entry->scene, lgh::GpuSceneOptions{maxAnisotropy, compression});
+    entry->gpu = std::make_unique<lgh::GpuScene>(entry->scene,
+                                                 lgh::GpuSceneOptions{maxAnisotropy, compression});
     return entry;
   }
 
@@ -234,8 +237,8 @@ class MaterialTechniques : public ::testing::Test {
     return frame;
   }
 
-  static Frame golden(const std::string& name, const lgh::CachedScene& cached,
-                      const json& camera, const json& parameters) {
+  static Frame golden(const std::string& name, const lgh::CachedScene& cached, const json& camera,
+                      const json& parameters) {
     Frame frame = render(cached, camera, parameters);
     EXPECT_EQ(lgh::test::checkGolden(frame.image, "technique_" + name, kMaxMeanError, kMaxFraction),
               "");
@@ -280,9 +283,13 @@ TEST_F(MaterialTechniques, IlluminationModels) {
        {{"model", "blinn-phong"}, {"specular", {0.6, 0.6, 0.6}}, {"shininess", 40}}},
       {"model_lambert", {{"model", "oren-nayar"}, {"sigma", 0}}},
       {"model_oren_nayar", {{"model", "oren-nayar"}, {"sigma", 0.8}}},
-      {"model_cook_torrance", {{"model", "cook-torrance"}, {"m", 0.15}, {"f0", {0.04, 0.04, 0.04}}}},
+      {"model_cook_torrance",
+       {{"model", "cook-torrance"}, {"m", 0.15}, {"f0", {0.04, 0.04, 0.04}}}},
       {"model_cook_torrance_gold",
-       {{"model", "cook-torrance"}, {"diffuse", {0, 0, 0}}, {"m", 0.25}, {"f0", {1.0, 0.78, 0.34}}}},
+       {{"model", "cook-torrance"},
+        {"diffuse", {0, 0, 0}},
+        {"m", 0.25},
+        {"f0", {1.0, 0.78, 0.34}}}},
   };
   std::vector<lgh::Image8> images;
   for (const auto& [name, parameters] : models) {
@@ -292,7 +299,8 @@ TEST_F(MaterialTechniques, IlluminationModels) {
   // Each model shows something else.
   for (std::size_t i = 0; i < images.size(); ++i) {
     for (std::size_t j = i + 1; j < images.size(); ++j) {
-      EXPECT_GT(difference(images[i], images[j]), 0.2) << models[i].first << " vs " << models[j].first;
+      EXPECT_GT(difference(images[i], images[j]), 0.2)
+          << models[i].first << " vs " << models[j].first;
     }
   }
 }
@@ -304,7 +312,8 @@ TEST_F(MaterialTechniques, ShadingModes) {
     SCOPED_TRACE(mode);
     json parameters = phong;
     parameters["shading"] = mode;
-    images.push_back(golden(std::string("shading_") + mode, *coarseBall, kBallCamera, parameters).image);
+    images.push_back(
+        golden(std::string("shading_") + mode, *coarseBall, kBallCamera, parameters).image);
   }
   EXPECT_GT(difference(images[0], images[1]), 1.0) << "flat vs Gouraud";
   EXPECT_GT(difference(images[1], images[2]), 0.3) << "Gouraud vs per pixel";
@@ -314,15 +323,22 @@ TEST_F(MaterialTechniques, SurfaceDetail) {
   const std::vector<std::pair<std::string, json>> techniques = {
       {"surface_texture", {{"surface", "none"}}},
       {"surface_normal", {{"surface", "normal"}, {"normal_texture", kNormalMap}}},
-      {"surface_bump", {{"surface", "bump"}, {"height_texture", kHeightMap}, {"height_scale", 0.01}}},
+      {"surface_bump",
+       {{"surface", "bump"}, {"height_texture", kHeightMap}, {"height_scale", 0.01}}},
       {"surface_parallax",
-       {{"surface", "parallax"}, {"height_texture", kHeightMap}, {"normal_texture", kNormalMap},
+       {{"surface", "parallax"},
+        {"height_texture", kHeightMap},
+        {"normal_texture", kNormalMap},
         {"height_scale", 0.04}}},
       {"surface_relief",
-       {{"surface", "relief"}, {"height_texture", kHeightMap}, {"normal_texture", kNormalMap},
+       {{"surface", "relief"},
+        {"height_texture", kHeightMap},
+        {"normal_texture", kNormalMap},
         {"height_scale", 0.06}}},
       {"surface_displacement",
-       {{"surface", "displacement"}, {"height_texture", kHeightMap}, {"height_scale", 0.03},
+       {{"surface", "displacement"},
+        {"height_texture", kHeightMap},
+        {"height_scale", 0.03},
         {"tessellation_pixels", 2}}},
   };
   std::vector<Frame> frames;
@@ -338,7 +354,8 @@ TEST_F(MaterialTechniques, SurfaceDetail) {
 }
 
 TEST_F(MaterialTechniques, ReliefSelfShadowAndSilhouettes) {
-  const json relief = {{"surface", "relief"}, {"height_texture", kHeightMap}, {"height_scale", 0.08}};
+  const json relief = {
+      {"surface", "relief"}, {"height_texture", kHeightMap}, {"height_scale", 0.08}};
   json unshadowed = relief;
   unshadowed["relief_self_shadow"] = false;
   const Frame shadowed = render(*board, kBoardCamera, relief);
@@ -366,10 +383,12 @@ TEST_F(MaterialTechniques, MultiTexturing) {
       golden("light_map", *board, kBoardCamera,
              {{"light_map", {{"texture", kLightMap}}}, {"light_map_strength", 1.5}});
   EXPECT_GT(difference(plain.image, lightMap.image), 2.0);
-  const Frame maps = golden(
-      "gloss_specular_maps", *board, kBoardCamera,
-      {{"model", "blinn-phong"}, {"shininess", 200}, {"specular", {1, 1, 1}},
-       {"specular_texture", {{"texture", kChecker}}}, {"shininess_texture", {{"texture", kGloss}}}});
+  const Frame maps = golden("gloss_specular_maps", *board, kBoardCamera,
+                            {{"model", "blinn-phong"},
+                             {"shininess", 200},
+                             {"specular", {1, 1, 1}},
+                             {"specular_texture", {{"texture", kChecker}}},
+                             {"shininess_texture", {{"texture", kGloss}}}});
   EXPECT_GT(difference(plain.image, maps.image), 0.5);
   // Alpha test: the holes show the ball and the background behind the board.
   const json holes = {{"diffuse_texture", {{"texture", kHoles}}}};
@@ -418,15 +437,16 @@ TEST_F(MaterialTechniques, WrapModesAndFilters) {
 
 TEST_F(MaterialTechniques, CompressionOnUpload) {
   auto compressed = upload(techniqueScene(), lgh::TextureCompression::Bc);
-  const json relief = {{"surface", "relief"}, {"height_texture", kHeightMap},
-                       {"normal_texture", kNormalMap}, {"height_scale", 0.06}};
+  const json relief = {{"surface", "relief"},
+                       {"height_texture", kHeightMap},
+                       {"normal_texture", kNormalMap},
+                       {"height_scale", 0.06}};
   const Frame plain = render(*board, kBoardCamera, relief);
   const Frame bc = golden("compression_bc", *compressed, kBoardCamera, relief);
   const lgh::GpuScene::TextureMemory memory = compressed->gpu->textureMemory();
   std::cout << fmt::format("bc: {} of {} textures compressed, {} bytes for {} as RGBA8 ({}); {}\n",
                            memory.compressed, memory.textures, memory.bytes,
-                           memory.uncompressedBytes,
-                           bc.report.decisions.at("texture_memory"),
+                           memory.uncompressedBytes, bc.report.decisions.at("texture_memory"),
                            fmt::format("PSNR vs uncompressed {:.1f} dB",
                                        lgh::compareToReference(bc.linear, plain.linear).psnr));
   EXPECT_EQ(memory.compressed, memory.textures);
@@ -434,6 +454,40 @@ TEST_F(MaterialTechniques, CompressionOnUpload) {
   EXPECT_LT(memory.bytes * 3, memory.uncompressedBytes);
   EXPECT_NE(bc.report.decisions.at("texture_memory").find("saved"), std::string::npos);
   EXPECT_GT(lgh::compareToReference(bc.linear, plain.linear).psnr, 30.0);
+}
+
+// A precompressed image with level 0 alone (a DDS file without mipmaps) gets the rest of the
+// chain on upload: the 1 x 1 level holds the checker's mean (in linear light), not nothing.
+TEST_F(MaterialTechniques, PrecompressedWithoutMipmapsGetsThem) {
+  const lgh::Image8 checker = lgh::makeCheckerImage(64, 8, 235, 20);
+  std::vector<std::string> warnings;
+  const auto capabilities = lgh::TextureCapabilities::query();
+  ASSERT_TRUE(capabilities.s3tc && capabilities.s3tcSrgb) << "llvmpipe has S3TC";
+  // The driver's BC1 blocks of level 0, as a DDS file would hold them.
+  const lgh::UploadedTexture source =
+      lgh::uploadTexture(checker, nullptr, lgh::TextureUsage::Color, lgh::TextureCompression::Bc,
+                         capabilities, warnings);
+  lgh::BlockCompressedImage blocks;
+  blocks.format = lgh::BlockFormat::Bc1;
+  blocks.srgb = true;
+  blocks.width = checker.width;
+  blocks.height = checker.height;
+  blocks.levels.emplace_back(lgh::blockLevelBytes(blocks.format, blocks.width, blocks.height));
+  glGetCompressedTextureImage(source.texture.id(), 0,
+                              static_cast<GLsizei>(blocks.levels.front().size()),
+                              blocks.levels.front().data());
+  const lgh::UploadedTexture loaded =
+      lgh::uploadTexture(checker, &blocks, lgh::TextureUsage::Color, lgh::TextureCompression::None,
+                         capabilities, warnings);
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  EXPECT_EQ(loaded.format, "BC1 sRGB");
+  GLint levels = 0;
+  glGetTextureParameteriv(loaded.texture.id(), GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
+  EXPECT_EQ(levels, 7);
+  std::array<std::uint8_t, 4> texel{};
+  glGetTextureImage(loaded.texture.id(), 6, GL_RGBA, GL_UNSIGNED_BYTE, 4, texel.data());
+  // (235 and 20 in sRGB) averaged in linear light, back in sRGB: 173; BC1 rounds to 5-6 bits.
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(texel[static_cast<std::size_t>(c)], 173, 10) << c;
 }
 
 // --- The gallery (docs/GALLERY.md) --------------------------------------------------------------
@@ -474,24 +528,28 @@ TEST_F(MaterialTechniques, Gallery) {
     return render(scene, camera, parameters, kGalleryWidth, kGalleryHeight).image;
   };
   const json ballCamera = kBallCamera;
-  save("models", {shot(*smoothBall, ballCamera, json::object()),
-                  shot(*smoothBall, ballCamera,
-                       {{"model", "phong"}, {"specular", {0.6, 0.6, 0.6}}, {"shininess", 40}}),
-                  shot(*smoothBall, ballCamera,
-                       {{"model", "blinn-phong"}, {"specular", {0.6, 0.6, 0.6}}, {"shininess", 40}}),
-                  shot(*smoothBall, ballCamera,
-                       {{"model", "blinn-phong"}, {"specular", {0.6, 0.6, 0.6}}, {"shininess", 160}}),
-                  shot(*smoothBall, ballCamera,
-                       {{"model", "cook-torrance"}, {"m", 0.15}, {"f0", {0.04, 0.04, 0.04}}}),
-                  shot(*smoothBall, ballCamera,
-                       {{"model", "cook-torrance"}, {"diffuse", {0, 0, 0}}, {"m", 0.25},
-                        {"f0", {1.0, 0.78, 0.34}}})});
+  save("models",
+       {shot(*smoothBall, ballCamera, json::object()),
+        shot(*smoothBall, ballCamera,
+             {{"model", "phong"}, {"specular", {0.6, 0.6, 0.6}}, {"shininess", 40}}),
+        shot(*smoothBall, ballCamera,
+             {{"model", "blinn-phong"}, {"specular", {0.6, 0.6, 0.6}}, {"shininess", 40}}),
+        shot(*smoothBall, ballCamera,
+             {{"model", "blinn-phong"}, {"specular", {0.6, 0.6, 0.6}}, {"shininess", 160}}),
+        shot(*smoothBall, ballCamera,
+             {{"model", "cook-torrance"}, {"m", 0.15}, {"f0", {0.04, 0.04, 0.04}}}),
+        shot(*smoothBall, ballCamera,
+             {{"model", "cook-torrance"},
+              {"diffuse", {0, 0, 0}},
+              {"m", 0.25},
+              {"f0", {1.0, 0.78, 0.34}}})});
   // Lambert against Oren-Nayar with the light behind the viewer: the rough ball looks flatter.
   auto frontLit = upload(ballScene(24, 48));
   frontLit->scene.lights = {light(lgh::LightType::Directional, {}, {0.0F, -0.1F, -1.0F}, 3.0F)};
-  save("lambert_oren_nayar", {shot(*frontLit, ballCamera, {{"model", "oren-nayar"}, {"sigma", 0}}),
-                              shot(*frontLit, ballCamera, {{"model", "oren-nayar"}, {"sigma", 0.5}}),
-                              shot(*frontLit, ballCamera, {{"model", "oren-nayar"}, {"sigma", 1.0}})});
+  save("lambert_oren_nayar",
+       {shot(*frontLit, ballCamera, {{"model", "oren-nayar"}, {"sigma", 0}}),
+        shot(*frontLit, ballCamera, {{"model", "oren-nayar"}, {"sigma", 0.5}}),
+        shot(*frontLit, ballCamera, {{"model", "oren-nayar"}, {"sigma", 1.0}})});
   const json phong = {{"model", "phong"}, {"specular", {0.7, 0.7, 0.7}}, {"shininess", 30}};
   std::vector<lgh::Image8> shading;
   for (const char* mode : {"flat", "gouraud", "pixel"}) {
@@ -502,34 +560,44 @@ TEST_F(MaterialTechniques, Gallery) {
   save("shading", shading);
   // The lecture's comparison: texture, normal, parallax and relief mapping; then bump and
   // displacement.
-  save("surface", {shot(*board, kBoardCamera, {{"surface", "none"}}),
-                   shot(*board, kBoardCamera, {{"surface", "normal"}, {"normal_texture", kNormalMap}}),
-                   shot(*board, kBoardCamera,
-                        {{"surface", "parallax"}, {"height_texture", kHeightMap},
-                         {"normal_texture", kNormalMap}, {"height_scale", 0.04}}),
-                   shot(*board, kBoardCamera,
-                        {{"surface", "relief"}, {"height_texture", kHeightMap},
-                         {"normal_texture", kNormalMap}, {"height_scale", 0.06}})});
+  save("surface",
+       {shot(*board, kBoardCamera, {{"surface", "none"}}),
+        shot(*board, kBoardCamera, {{"surface", "normal"}, {"normal_texture", kNormalMap}}),
+        shot(*board, kBoardCamera,
+             {{"surface", "parallax"},
+              {"height_texture", kHeightMap},
+              {"normal_texture", kNormalMap},
+              {"height_scale", 0.04}}),
+        shot(*board, kBoardCamera,
+             {{"surface", "relief"},
+              {"height_texture", kHeightMap},
+              {"normal_texture", kNormalMap},
+              {"height_scale", 0.06}})});
   // Relief mapping's self-shadowing, under the low light from the left alone.
   auto lowLight = upload(techniqueScene());
   lowLight->scene.lights.erase(lowLight->scene.lights.begin());
-  const json relief = {{"surface", "relief"}, {"height_texture", kHeightMap}, {"height_scale", 0.06}};
+  const json relief = {
+      {"surface", "relief"}, {"height_texture", kHeightMap}, {"height_scale", 0.06}};
   json unshadowed = relief;
   unshadowed["relief_self_shadow"] = false;
   save("relief_self_shadow",
        {shot(*lowLight, kBoardCamera, unshadowed), shot(*lowLight, kBoardCamera, relief)});
-  save("surface_height", {shot(*board, kBoardCamera,
-                               {{"surface", "bump"}, {"height_texture", kHeightMap},
-                                {"height_scale", 0.01}}),
-                          shot(*board, kBoardCamera,
-                               {{"surface", "displacement"}, {"height_texture", kHeightMap},
-                                {"height_scale", 0.03}, {"tessellation_pixels", 2}})});
+  save("surface_height",
+       {shot(*board, kBoardCamera,
+             {{"surface", "bump"}, {"height_texture", kHeightMap}, {"height_scale", 0.01}}),
+        shot(*board, kBoardCamera,
+             {{"surface", "displacement"},
+              {"height_texture", kHeightMap},
+              {"height_scale", 0.03},
+              {"tessellation_pixels", 2}})});
   save("multitexturing",
        {shot(*board, kBoardCamera, json::object()),
         shot(*board, kBoardCamera,
              {{"light_map", {{"texture", kLightMap}}}, {"light_map_strength", 1.5}}),
         shot(*board, kBoardCamera,
-             {{"model", "blinn-phong"}, {"shininess", 200}, {"specular", {1, 1, 1}},
+             {{"model", "blinn-phong"},
+              {"shininess", 200},
+              {"specular", {1, 1, 1}},
               {"specular_texture", {{"texture", kChecker}}},
               {"shininess_texture", {{"texture", kGloss}}}}),
         shot(*board, kBoardCamera,
@@ -539,14 +607,14 @@ TEST_F(MaterialTechniques, Gallery) {
   auto wide = upload(techniqueScene(-0.5F, 1.5F));
   std::vector<lgh::Image8> wraps;
   for (const char* mode : {"repeat", "mirrored-repeat", "clamp-to-edge", "clamp-to-border"}) {
-    wraps.push_back(shot(*wide, kBoardCamera,
-                         {{"diffuse_texture", {{"texture", kLightMap}}},
-                          {"sampling",
-                           {{"wrap_s", mode}, {"wrap_t", mode}, {"border_color", {0.1, 0.3, 0.8, 1}}}}}));
+    wraps.push_back(
+        shot(*wide, kBoardCamera,
+             {{"diffuse_texture", {{"texture", kLightMap}}},
+              {"sampling",
+               {{"wrap_s", mode}, {"wrap_t", mode}, {"border_color", {0.1, 0.3, 0.8, 1}}}}}));
   }
   save("wrap_modes", wraps);
   std::cout << "gallery written to " << out << "\n";
 }
 
 }  // namespace
-

@@ -152,8 +152,8 @@ class TextureFiltering : public ::testing::Test {
     glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &maxAnisotropy);
     plane = std::make_shared<lgh::CachedScene>();
     plane->scene = checkerPlane();
-    plane->gpu = std::make_unique<lgh::GpuScene>(plane->scene,
-                                                 lgh::GpuSceneOptions{maxAnisotropy, {}});
+    plane->gpu =
+        std::make_unique<lgh::GpuScene>(plane->scene, lgh::GpuSceneOptions{maxAnisotropy, {}});
   }
   static void TearDownTestSuite() {
     plane.reset();

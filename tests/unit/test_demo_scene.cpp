@@ -187,12 +187,13 @@ TEST_F(DemoScene, RowOfIlluminationModels) {
                      [&](const lgh::MeshInstance& i) { return i.mesh == meshIndex; });
     ASSERT_NE(instance, scene().instances.end());
     const float x = instance->world[3].x;
-    EXPECT_GT(x, previousX);  // left to right
+    EXPECT_GT(x, previousX);                         // left to right
     EXPECT_NEAR(instance->world[3].y, 0.1F, 1e-6F);  // resting on the floor
     previousX = x;
   }
-  const auto lambert = std::find_if(scene().materials.begin(), scene().materials.end(),
-                                    [](const lgh::Material& m) { return m.name == "model_lambert"; });
+  const auto lambert =
+      std::find_if(scene().materials.begin(), scene().materials.end(),
+                   [](const lgh::Material& m) { return m.name == "model_lambert"; });
   ASSERT_NE(lambert, scene().materials.end());
   EXPECT_EQ(lambert->classic.sigma, 0.0F);
 }

@@ -101,19 +101,26 @@ TEST(MaterialRequest, BadParametersNameTheField) {
   };
   const std::vector<Case> cases = {
       {{{{"match", {{"name", "red"}}}, {"parameters", {{"shininess", 5000}}}}},
-       lgh::ErrorCode::Invalid, "/materials/0/parameters/shininess"},
+       lgh::ErrorCode::Invalid,
+       "/materials/0/parameters/shininess"},
       {{{{"match", {{"name", "red"}}}, {"parameters", {{"sigma", -0.1}}}}},
-       lgh::ErrorCode::Invalid, "/materials/0/parameters/sigma"},
+       lgh::ErrorCode::Invalid,
+       "/materials/0/parameters/sigma"},
       {{{{"match", {{"name", "red"}}}, {"parameters", {{"model", "ward"}}}}},
-       lgh::ErrorCode::BadRequest, "/materials/0/parameters/model"},
+       lgh::ErrorCode::BadRequest,
+       "/materials/0/parameters/model"},
       {{{{"match", {{"name", "red"}}}, {"parameters", {{"sampling", {{"anisotropy", 32}}}}}}},
-       lgh::ErrorCode::Invalid, "/materials/0/parameters/sampling/anisotropy"},
+       lgh::ErrorCode::Invalid,
+       "/materials/0/parameters/sampling/anisotropy"},
       {{{{"match", {{"name", "red"}}}, {"parameters", {{"light_map", {{"tex_coord", 1}}}}}}},
-       lgh::ErrorCode::BadRequest, "/materials/0/parameters/light_map"},
+       lgh::ErrorCode::BadRequest,
+       "/materials/0/parameters/light_map"},
       {{{{"match", {{"name", "red"}, {"index", 1}}}, {"parameters", json::object()}}},
-       lgh::ErrorCode::BadRequest, "/materials/0/match"},
+       lgh::ErrorCode::BadRequest,
+       "/materials/0/match"},
       {{{{"match", {{"name", "red"}}}, {"parameters", {{"glossiness", 1}}}}},
-       lgh::ErrorCode::BadRequest, "/materials/0/parameters"},
+       lgh::ErrorCode::BadRequest,
+       "/materials/0/parameters"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.materials.dump());
@@ -124,11 +131,11 @@ TEST(MaterialRequest, BadParametersNameTheField) {
 }
 
 TEST(MaterialRequest, PerLightColoursAndCompression) {
-  const lgh::RenderRequest request = lgh::parseRenderRequest(json{
-      {"lights",
-       {{{"type", "point"}, {"ambient", {0.1, 0.2, 0.3}}, {"specular", {0, 0, 1}}},
-        {{"type", "point"}}}},
-      {"settings", {{"texture_compression", "bc"}}}});
+  const lgh::RenderRequest request = lgh::parseRenderRequest(
+      json{{"lights",
+            {{{"type", "point"}, {"ambient", {0.1, 0.2, 0.3}}, {"specular", {0, 0, 1}}},
+             {{"type", "point"}}}},
+           {"settings", {{"texture_compression", "bc"}}}});
   const lgh::LightDesc& lit = request.lights[0];
   EXPECT_EQ(lit.ambient, (std::array<float, 3>{0.1F, 0.2F, 0.3F}));
   EXPECT_FALSE(lit.diffuse.has_value());  // the light's colour
@@ -148,9 +155,10 @@ TEST(MaterialTable, AppliesOverridesWithoutTouchingTheScene) {
   const lgh::MaterialTable table(
       scene, {override({{"name", "red"}}, {{"model", "phong"}, {"shininess", 12}}),
               override({{"index", 1}}, {{"model", "oren-nayar"}, {"sigma", 0.7}}),
-              override({{"all", true}},
-                       {{"sampling", {{"wrap_s", "clamp-to-border"}, {"border_color", {1, 0, 0, 1}},
-                                      {"filter", "nearest"}}}})});
+              override({{"all", true}}, {{"sampling",
+                                          {{"wrap_s", "clamp-to-border"},
+                                           {"border_color", {1, 0, 0, 1}},
+                                           {"filter", "nearest"}}}})});
   const auto index = [&](const std::string& name) {
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
       if (scene.materials[i].name == name) return static_cast<int>(i);
@@ -185,17 +193,18 @@ TEST(MaterialTable, ErrorsNameTheRequestField) {
       {{{"name", "marble"}}, json::object(), "/materials/0/match/name"},
       {{{"index", 99}}, json::object(), "/materials/0/match/index"},
       {{{"name", "red"}}, {{"shading", "gouraud"}}, "/materials/0/parameters/shading"},
-      {{{"name", "red"}}, {{"model", "metallic-roughness"}, {"shading", "flat"}},
+      {{{"name", "red"}},
+       {{"model", "metallic-roughness"}, {"shading", "flat"}},
        "/materials/0/parameters/shading"},
       {{{"name", "red"}}, {{"surface", "relief"}}, "/materials/0/parameters/surface"},
-      {{{"name", "red"}}, {{"light_map", {{"texture", 99}}}},
+      {{{"name", "red"}},
+       {{"light_map", {{"texture", 99}}}},
        "/materials/0/parameters/light_map/texture"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.parameters.dump());
-    const lgh::Error error = errorOf([&] {
-      const lgh::MaterialTable table(scene, {override(c.match, c.parameters)});
-    });
+    const lgh::Error error =
+        errorOf([&] { const lgh::MaterialTable table(scene, {override(c.match, c.parameters)}); });
     EXPECT_EQ(error.code(), lgh::ErrorCode::Invalid);
     EXPECT_EQ(error.field(), c.field) << error.what();
   }
@@ -315,8 +324,12 @@ lgh::Scene loadQuad(const json& extras, const std::vector<std::uint8_t>& dds) {
       {"textures", {{{"extensions", {{"MSFT_texture_dds", {{"source", 0}}}}}}}},
       {"images", {{{"uri", "tiles.dds"}}}},
       {"accessors",
-       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
-         {"min", {0, 0, 0}}, {"max", {1, 1, 0}}},
+       {{{"bufferView", 0},
+         {"componentType", 5126},
+         {"count", 4},
+         {"type", "VEC3"},
+         {"min", {0, 0, 0}},
+         {"max", {1, 1, 0}}},
         {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
         {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
         {{"bufferView", 3}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}},
@@ -344,16 +357,15 @@ std::vector<std::uint8_t> redBc1Dds() {
 }
 
 TEST(GltfMaterialExtras, ApplyTheSameParameters) {
-  const lgh::Scene scene = loadQuad(
-      {{"lgh",
-        {{"model", "phong"},
-         {"shading", "flat"},
-         {"shininess", 90},
-         {"surface", "parallax"},
-         {"height_texture", {{"texture", 0}}},
-         {"light_map", {{"texture", 0}}},
-         {"sampling", {{"wrap_s", "clamp-to-border"}}}}}},
-      redBc1Dds());
+  const lgh::Scene scene = loadQuad({{"lgh",
+                                      {{"model", "phong"},
+                                       {"shading", "flat"},
+                                       {"shininess", 90},
+                                       {"surface", "parallax"},
+                                       {"height_texture", {{"texture", 0}}},
+                                       {"light_map", {{"texture", 0}}},
+                                       {"sampling", {{"wrap_s", "clamp-to-border"}}}}}},
+                                    redBc1Dds());
   ASSERT_EQ(scene.materials.size(), 1U);
   const lgh::Material& m = scene.materials[0];
   EXPECT_EQ(m.model, lgh::MaterialModel::Phong);

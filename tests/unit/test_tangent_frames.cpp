@@ -100,10 +100,11 @@ TEST(TangentFrames, MikkTSpaceOnTheTexturedAssimpAssets) {
       }
     }
     ASSERT_GT(total.triangles, 0U);
-    std::cout << fmt::format("{}: {} vertices, {} triangles; t along +u at {}/{} corners, "
-                             "bitangent along -v at {}/{}\n",
-                             asset, total.vertices, total.triangles, total.followingU,
-                             total.corners, total.followingV, total.corners);
+    std::cout << fmt::format(
+        "{}: {} vertices, {} triangles; t along +u at {}/{} corners, "
+        "bitangent along -v at {}/{}\n",
+        asset, total.vertices, total.triangles, total.followingU, total.corners, total.followingV,
+        total.corners);
     // Every corner: the frame averages triangles of one UV orientation around a vertex, and these
     // assets have no UV shear large enough to turn an axis around.
     EXPECT_EQ(total.followingU, total.corners);
@@ -113,8 +114,9 @@ TEST(TangentFrames, MikkTSpaceOnTheTexturedAssimpAssets) {
 }
 
 TEST(TangentFrames, ValidWithoutTextureCoordinates) {
-  const lgh::Scene scene = lgh::loadGltfFile(
-      lgh::test::assimpGltfDir(), "glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf");
+  const lgh::Scene scene =
+      lgh::loadGltfFile(lgh::test::assimpGltfDir(),
+                        "glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf");
   std::size_t vertices = 0;
   for (const lgh::Mesh& mesh : scene.meshes) {
     for (lgh::Primitive primitive : mesh.primitives) {

@@ -52,9 +52,9 @@ int ForwardBlendPass::run(const Inputs& inputs, SurfacePrograms& programs, GpuSc
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   glCullFace(GL_BACK);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_LIGHTS, inputs.lights);
-  const SurfaceFrame frame{inputs.camera,     inputs.primitives, targets.width,
-                           targets.height,    inputs.lightCount, inputs.ambient,
-                           inputs.maxTessellationLevel};
+  const SurfaceFrame frame{
+      inputs.camera,  inputs.primitives,          targets.width, targets.height, inputs.lightCount,
+      inputs.ambient, inputs.maxTessellationLevel};
   const bool disk = inputs.primitives->pointShape == PointShape::Disk;
   std::set<GLuint> prepared;
   for (const GpuScene::DrawItem* item : items) {

@@ -28,8 +28,9 @@ void GBufferPass::run(const Inputs& inputs, GpuScene& gpuScene, FrameTargets& ta
   glEnable(GL_FRAMEBUFFER_SRGB);  // the albedo target is sRGB-encoded
   glCullFace(GL_BACK);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_LIGHTS, inputs.lights);
-  const SurfaceFrame frame{inputs.camera,    inputs.primitives, targets.width, targets.height,
-                           inputs.lightCount, 0.0F,              maxTessellationLevel_};
+  const SurfaceFrame frame{inputs.camera,        inputs.primitives, targets.width,
+                           targets.height,       inputs.lightCount, 0.0F,
+                           maxTessellationLevel_};
   const bool disk = inputs.primitives->pointShape == PointShape::Disk;
   std::set<GLuint> prepared;
   GLuint currentProgram = 0;

@@ -145,8 +145,8 @@ void bindMaterial(GLuint program, const Material& material, GpuScene& gpuScene, 
   u.set("uAmbientIsDiffuse", !material.classic.ambient.has_value());
   u.set("uSpecularColor", modelSpecular(material, model));
   u.set("uExponent", modelExponent(material, model));
-  u.set("uShading", static_cast<GLuint>(isClassicModel(model) ? material.classic.shading
-                                                               : ShadingMode::Pixel));
+  u.set("uShading",
+        static_cast<GLuint>(isClassicModel(model) ? material.classic.shading : ShadingMode::Pixel));
   u.set("uBicubic", material.bicubic);
   u.set("uLightMapStrength", material.lightMapStrength);
   setSurfaceDetail(u, material.surface);

@@ -137,7 +137,8 @@ BlockCompressedImage readDds(const std::uint8_t* bytes, std::size_t size, const 
     format = fromFourCc(code);
     if (!format) fail(what, "FourCC is not one of DXT1, DXT2-5, ATI1, BC4U, ATI2, BC5U");
   }
-  const auto declaredLevels = static_cast<int>(std::max<std::uint32_t>(read32(bytes + kMipCount), 1));
+  const auto declaredLevels =
+      static_cast<int>(std::max<std::uint32_t>(read32(bytes + kMipCount), 1));
   const int maxLevels = fullMipCount(static_cast<int>(width), static_cast<int>(height));
   if (declaredLevels > maxLevels) {
     fail(what, fmt::format("{} mip levels for a {} x {} texture (at most {})", declaredLevels,

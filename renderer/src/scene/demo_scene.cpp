@@ -270,13 +270,13 @@ Scene makeDemoScene() {
       {4, placed({0.4F, kShortBoxSize + kSphereRadius, 0.3F}, 0.0F)},
   };
   static const char* const kRowNames[kModelRowCount] = {
-      "ggx_sphere", "phong_sphere", "blinn_phong_sphere", "lambert_sphere", "oren_nayar_sphere",
-      "cook_torrance_sphere"};
+      "ggx_sphere",     "phong_sphere",      "blinn_phong_sphere",
+      "lambert_sphere", "oren_nayar_sphere", "cook_torrance_sphere"};
   for (int i = 0; i < kModelRowCount; ++i) {
     scene.meshes.push_back(makeModelSphere(kModelRowFirst + i, kRowNames[i]));
     const float x = -0.75F + 0.3F * static_cast<float>(i);
-    scene.instances.push_back({static_cast<int>(scene.meshes.size()) - 1,
-                               placed({x, 0.1F, 0.82F}, 0.0F)});
+    scene.instances.push_back(
+        {static_cast<int>(scene.meshes.size()) - 1, placed({x, 0.1F, 0.82F}, 0.0F)});
   }
   scene.materials = makeMaterials();
   scene.images = makeImages();

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstddef>
 
+#include <fmt/format.h>
+
 namespace lgh {
 namespace {
 
@@ -46,8 +48,8 @@ GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options)
       const Primitive& primitive =
           triangles ? mesh.primitives[p] : mesh.linesAndPoints[p - mesh.primitives.size()];
       drawItems_.push_back({gpuMesh[p].vertexArray.id(), gpuMesh[p].indexCount, primitive.material,
-                            instance.world, primitive.topology, primitive.unlit,
-                            primitive.tangents, boundsCenter(primitive, instance.world)});
+                            instance.world, primitive.topology, primitive.unlit, primitive.tangents,
+                            boundsCenter(primitive, instance.world)});
     }
   }
   // The materials' own textures now, so that a scene's first frame and its load time carry them.
@@ -87,11 +89,12 @@ const GpuScene::UploadedImage* GpuScene::imageTexture(int image, TextureUsage us
       blocks == scene_.compressedImages.end() ? nullptr : &blocks->second;
   // Without compression every linear use shares one RGBA8 texture.
   const bool distinctUses = options_.compression == TextureCompression::Bc;
-  const TextureUsage kind = distinctUses || usage == TextureUsage::Color ? usage : TextureUsage::Data;
+  const TextureUsage kind =
+      distinctUses || usage == TextureUsage::Color ? usage : TextureUsage::Data;
   const auto key = std::make_pair(image, static_cast<int>(kind));
   if (const auto it = textures_.find(key); it != textures_.end()) return &it->second;
-  UploadedTexture uploaded = uploadTexture(pixels, precompressed, kind, options_.compression,
-                                           capabilities_, warnings_);
+  UploadedTexture uploaded =
+      uploadTexture(pixels, precompressed, kind, options_.compression, capabilities_, warnings_);
   textureBytes_ += uploaded.bytes;
   memory_.bytes += uploaded.bytes;
   memory_.uncompressedBytes += uploaded.uncompressedBytes;
@@ -116,6 +119,10 @@ GLuint GpuScene::samplerFor(const Sampler& sampler) {
   // device's maximum; a request's value is capped at it.
   const float wanted = sampler.anisotropy > 0.0F ? sampler.anisotropy : options_.maxAnisotropy;
   const float anisotropy = std::clamp(wanted, 1.0F, std::max(options_.maxAnisotropy, 1.0F));
+  if (sampler.anisotropy > anisotropy) {
+    warnings_.push_back(fmt::format("anisotropy {} capped at the device's maximum {}",
+                                    sampler.anisotropy, anisotropy));
+  }
   if (usesMipmaps(sampler.minFilter) && anisotropy > 1.0F) {
     glSamplerParameterf(id, GL_TEXTURE_MAX_ANISOTROPY, anisotropy);
   }

@@ -36,8 +36,8 @@ class GpuScene {
     int material;  // -1: default material
     glm::mat4 world;
     Topology topology = Topology::Triangles;
-    bool unlit = false;     // lines and points without normals
-    bool tangents = false;  // the vertices carry a tangent frame
+    bool unlit = false;      // lines and points without normals
+    bool tangents = false;   // the vertices carry a tangent frame
     glm::vec3 center{0.0F};  // world-space centre of the bounds: sorting blended surfaces
   };
   // Every primitive of every instance.

@@ -58,12 +58,23 @@ int minFilterEnum(bool nearest, MipmapMode mipmaps) {
 
 // Every texture reference of a material, to change how they are sampled.
 std::vector<TextureRef*> allTextures(Material& m) {
-  return {&m.baseColorTexture,          &m.metallicRoughnessTexture, &m.normalTexture,
-          &m.occlusionTexture,          &m.emissiveTexture,          &m.clearcoat.texture,
-          &m.clearcoat.roughnessTexture, &m.clearcoat.normalTexture, &m.sheen.colorTexture,
-          &m.sheen.roughnessTexture,    &m.specular.texture,         &m.specular.colorTexture,
-          &m.transmission.texture,      &m.classic.specularTexture,  &m.classic.shininessTexture,
-          &m.lightMap,                  &m.surface.heightTexture};
+  return {&m.baseColorTexture,
+          &m.metallicRoughnessTexture,
+          &m.normalTexture,
+          &m.occlusionTexture,
+          &m.emissiveTexture,
+          &m.clearcoat.texture,
+          &m.clearcoat.roughnessTexture,
+          &m.clearcoat.normalTexture,
+          &m.sheen.colorTexture,
+          &m.sheen.roughnessTexture,
+          &m.specular.texture,
+          &m.specular.colorTexture,
+          &m.transmission.texture,
+          &m.classic.specularTexture,
+          &m.classic.shininessTexture,
+          &m.lightMap,
+          &m.surface.heightTexture};
 }
 
 void applySampling(const SamplingParameters& sampling, Material& material) {
@@ -76,8 +87,8 @@ void applySampling(const SamplingParameters& sampling, Material& material) {
       s.borderColor = glm::vec4(c[0], c[1], c[2], c[3]);
     }
     if (sampling.filter || sampling.mipmaps) {
-      const bool nearest = sampling.filter ? *sampling.filter == TextureFilter::Nearest
-                                           : nearestWithin(s.minFilter);
+      const bool nearest =
+          sampling.filter ? *sampling.filter == TextureFilter::Nearest : nearestWithin(s.minFilter);
       const MipmapMode mipmaps = sampling.mipmaps.value_or(mipmapMode(s.minFilter));
       s.minFilter = minFilterEnum(nearest, mipmaps);
       if (sampling.filter) s.magFilter = nearest ? kNearest : kLinear;
@@ -150,10 +161,10 @@ void checkApplies(const MaterialParameters& p, const Material& m, const std::str
   }
   const SurfaceDetail technique = m.surface.technique;
   if (technique >= SurfaceDetail::Bump && !m.surface.heightTexture.valid()) {
-    throw Error(ErrorCode::Invalid,
-                fmt::format("surface '{}' needs a height map: set height_texture",
-                            enumName(technique)),
-                pointer + (p.surface ? "/surface" : "/height_texture"));
+    throw Error(
+        ErrorCode::Invalid,
+        fmt::format("surface '{}' needs a height map: set height_texture", enumName(technique)),
+        pointer + (p.surface ? "/surface" : "/height_texture"));
   }
 }
 

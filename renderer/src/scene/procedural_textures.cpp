@@ -125,8 +125,7 @@ Image8 makeNormalMapImage(const Image8& height, float strength) {
   auto h = [&](int x, int y) {
     x = (x + height.width) % height.width;
     y = (y + height.height) % height.height;
-    return static_cast<float>(
-               height.pixels[(static_cast<std::size_t>(y) * height.width + x) * 4]) /
+    return static_cast<float>(height.pixels[(static_cast<std::size_t>(y) * height.width + x) * 4]) /
            255.0F;
   };
   for (int y = 0; y < height.height; ++y) {

@@ -94,9 +94,9 @@ std::array<MaterialTextureSlot, kMaterialTextureSlots> materialTextureSlots(cons
   using U = TextureUsage;
   const bool classic = isClassicModel(m.model);
   // The layers' slots 10 and 11 carry the classic models' gloss and specular maps.
-  const MaterialTextureSlot gloss = classic ? MaterialTextureSlot{&m.classic.shininessTexture,
-                                                                  U::SingleChannel}
-                                            : MaterialTextureSlot{&m.specular.texture, U::Data};
+  const MaterialTextureSlot gloss =
+      classic ? MaterialTextureSlot{&m.classic.shininessTexture, U::SingleChannel}
+              : MaterialTextureSlot{&m.specular.texture, U::Data};
   const TextureRef* specularColor = classic ? &m.classic.specularTexture : &m.specular.colorTexture;
   return {{
       {&m.baseColorTexture, U::Color},

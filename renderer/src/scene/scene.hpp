@@ -237,7 +237,7 @@ struct Scene {
   std::vector<Mesh> meshes;
   std::vector<MeshInstance> instances;
   std::vector<Material> materials;
-  std::vector<Image8> images;     // decoded RGBA8
+  std::vector<Image8> images;  // decoded RGBA8
   // Block-compressed payloads of images loaded precompressed (DDS), by index into images (which
   // holds their decoded pixels for the CPU's use).
   std::map<int, BlockCompressedImage> compressedImages;

@@ -28,7 +28,8 @@ int mipLevels(int width, int height) {
 std::size_t rgba8Bytes(int width, int height, int levels) {
   std::size_t bytes = 0;
   for (int level = 0; level < levels; ++level) {
-    bytes += static_cast<std::size_t>(std::max(width >> level, 1)) * std::max(height >> level, 1) * 4;
+    bytes +=
+        static_cast<std::size_t>(std::max(width >> level, 1)) * std::max(height >> level, 1) * 4;
   }
   return bytes;
 }
@@ -132,19 +133,32 @@ UploadedTexture uploadCompressing(const Image8& image, BlockFormat format, bool 
   return result;
 }
 
-// Blocks as loaded: uploaded as they are, with the file's mip levels.
+// Blocks as loaded: uploaded as they are, with the file's mip levels. A file with level 0 alone
+// gets the rest of the chain as compression on upload makes it (decoded, box-filtered, compressed
+// by the driver): minified, it would alias otherwise.
 UploadedTexture uploadBlocks(const BlockCompressedImage& blocks, bool srgb) {
   UploadedTexture result;
   result.texture = gl::Texture(GL_TEXTURE_2D);
-  const auto levels = static_cast<int>(blocks.levels.size());
+  const auto fileLevels = static_cast<int>(blocks.levels.size());
+  const int levels = fileLevels == 1 ? mipLevels(blocks.width, blocks.height) : fileLevels;
   const GLuint id = result.texture.id();
   const GLenum internalFormat = blockEnum(blocks.format, srgb);
   glTextureStorage2D(id, levels, internalFormat, blocks.width, blocks.height);
-  for (int level = 0; level < levels; ++level) {
+  for (int level = 0; level < fileLevels; ++level) {
     const auto& data = blocks.levels[static_cast<std::size_t>(level)];
     glCompressedTextureSubImage2D(id, level, 0, 0, std::max(blocks.width >> level, 1),
                                   std::max(blocks.height >> level, 1), internalFormat,
                                   static_cast<GLsizei>(data.size()), data.data());
+  }
+  if (levels > fileLevels) {
+    const Image8 decoded =
+        decodeBlocks(blocks.format, blocks.width, blocks.height, blocks.levels.front().data());
+    const std::vector<Image8> chain = buildMipChain(decoded, srgb);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (std::size_t i = 0; i < chain.size(); ++i) {
+      glTextureSubImage2D(id, static_cast<GLint>(i + 1), 0, 0, chain[i].width, chain[i].height,
+                          GL_RGBA, GL_UNSIGNED_BYTE, chain[i].pixels.data());
+    }
   }
   setLevelRange(id, levels);
   result.bytes = compressedBytes(id, levels);
@@ -241,9 +255,9 @@ UploadedTexture uploadTexture(const Image8& image, const BlockCompressedImage* p
     const bool colorBlocks = precompressed->format <= BlockFormat::Bc3;
     const bool srgbUsable = !srgb || (colorBlocks && capabilities.s3tcSrgb);
     if ((colorBlocks && !capabilities.s3tc) || !srgbUsable) {
-      warnings.push_back(fmt::format(
-          "a {} texture used as {}: the device cannot sample it so; uploaded decoded",
-          blockFormatName(precompressed->format), srgb ? "sRGB colour" : "data"));
+      warnings.push_back(
+          fmt::format("a {} texture used as {}: the device cannot sample it so; uploaded decoded",
+                      blockFormatName(precompressed->format), srgb ? "sRGB colour" : "data"));
     } else {
       return uploadBlocks(*precompressed, srgb);
     }

@@ -121,8 +121,8 @@ bool loadImageCallback(tinygltf::Image* image, const int index, std::string*, st
         checkTextureSize(ctx, header->first, header->second, what);
       }
       BlockCompressedImage blocks = readDds(bytes, length, what);
-      Image8 decoded = decodeBlocks(blocks.format, blocks.width, blocks.height,
-                                    blocks.levels.front().data());
+      Image8 decoded =
+          decodeBlocks(blocks.format, blocks.width, blocks.height, blocks.levels.front().data());
       image->width = decoded.width;
       image->height = decoded.height;
       image->component = 4;

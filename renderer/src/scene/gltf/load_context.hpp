@@ -32,11 +32,11 @@ struct LoadContext {
   // Directory, Memory: the model's folder, relative (to root / to the upload)
   std::filesystem::path baseDir;
   std::map<std::string, const std::vector<std::uint8_t>*> memoryFiles;  // normalised name
-  std::optional<Error> fatal;               // a sandbox violation: always fails the load
-  std::map<std::string, Error> fileErrors;  // missing / too large side files, by URI
-  std::map<int, Image8> images;             // decoded, by glTF image index
+  std::optional<Error> fatal;                       // a sandbox violation: always fails the load
+  std::map<std::string, Error> fileErrors;          // missing / too large side files, by URI
+  std::map<int, Image8> images;                     // decoded, by glTF image index
   std::map<int, BlockCompressedImage> blockImages;  // DDS blocks as loaded, by glTF image index
-  std::map<int, Error> imageErrors;         // decode failures, by glTF image index
+  std::map<int, Error> imageErrors;                 // decode failures, by glTF image index
   std::vector<std::string> warnings;
 
   void warnOnce(const std::string& warning) {

@@ -107,8 +107,8 @@ std::vector<TextureRef> MaterialConverter::allTextures() {
   textures.reserve(model_.textures.size());
   for (std::size_t i = 0; i < model_.textures.size(); ++i) {
     try {
-      textures.push_back(texture(static_cast<int>(i), 0, {}, label("texture", static_cast<int>(i),
-                                                                   model_.textures[i].name)));
+      textures.push_back(texture(static_cast<int>(i), 0, {},
+                                 label("texture", static_cast<int>(i), model_.textures[i].name)));
     } catch (const Error&) {
       textures.emplace_back();  // a material using it has failed the load already
     }
