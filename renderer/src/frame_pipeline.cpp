@@ -117,8 +117,9 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   report.decide("texture_memory", textureMemoryText(cached.gpu->textureMemory()));
   // What unset `sampling.anisotropy` gets, and where a request's value is capped.
   report.decide("texture_anisotropy", fmt::format("{:g}", cached.gpu->maxAnisotropy()));
-  for (std::string& warning : cached.gpu->takeWarnings())
+  for (std::string& warning : cached.gpu->takeWarnings()) {
     report.warnings.push_back(std::move(warning));
+  }
 }
 
 }  // namespace lgh

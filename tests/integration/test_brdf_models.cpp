@@ -227,6 +227,7 @@ TEST_F(BrdfModels, PhongAndBlinnPhongPeakAtTheMirrorDirection) {
 TEST_F(BrdfModels, CookTorranceAndGgxAreReciprocal) {
   const auto pairs = randomPairs(4000, 11);
   std::vector<std::pair<glm::vec3, glm::vec3>> swapped;
+  swapped.reserve(pairs.size());
   for (const auto& [v, l] : pairs) swapped.emplace_back(l, v);
   Material cookTorrance;
   cookTorrance.model = lgh::MaterialModel::CookTorrance;

@@ -394,7 +394,8 @@ TEST(GltfMaterialExtras, BadExtrasNameTheMaterialAndField) {
       {{{"lgh", {{"light_map", {{"texture", 5}}}}}}, "/materials/0/extras/lgh/light_map/texture"},
       {{{"lgh", {{"shading", "gouraud"}}}}, "/materials/0/extras/lgh/shading"},
   };
-  for (const auto& [extras, where] : cases) {
+  for (const auto& [caseExtras, where] : cases) {
+    const json& extras = caseExtras;  // clang 14 (clang-tidy) captures no structured bindings
     SCOPED_TRACE(extras.dump());
     const lgh::Error error = errorOf([&] { loadQuad(extras, redBc1Dds()); });
     EXPECT_EQ(error.code(), lgh::ErrorCode::Invalid);

@@ -8,8 +8,8 @@
 // built on first use: most frames need two or three of them.
 #pragma once
 
-#include <compare>
 #include <map>
+#include <tuple>
 
 #include "gl/gl_objects.hpp"
 #include "lgh/material_settings.hpp"
@@ -22,7 +22,10 @@ struct SurfaceProgramKey {
   ShadingMode shading = ShadingMode::Pixel;
   bool displaced = false;
   bool forward = false;
-  auto operator<=>(const SurfaceProgramKey&) const = default;
+  bool operator<(const SurfaceProgramKey& other) const {
+    return std::tie(topology, shading, displaced, forward) <
+           std::tie(other.topology, other.shading, other.displaced, other.forward);
+  }
 };
 
 class SurfacePrograms {

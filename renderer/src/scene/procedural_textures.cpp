@@ -20,7 +20,7 @@ std::uint8_t* texel(Image8& image, int x, int y) {
 }
 
 std::uint8_t toByte(float value) {
-  return static_cast<std::uint8_t>(std::clamp(value, 0.0F, 1.0F) * 255.0F + 0.5F);
+  return static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0F, 1.0F) * 255.0F));
 }
 
 // A small deterministic hash noise in 0..1.

@@ -236,7 +236,7 @@ std::vector<Image8> buildMipChain(const Image8& image, bool srgb) {
         for (int c = 0; c < 4; ++c) {
           float value = sum[static_cast<std::size_t>(c)] / static_cast<float>(count);
           if (srgb && c < 3) value = linearToSrgb(value);
-          out[c] = static_cast<std::uint8_t>(std::clamp(value, 0.0F, 1.0F) * 255.0F + 0.5F);
+          out[c] = static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0F, 1.0F) * 255.0F));
         }
       }
     }
