@@ -1,7 +1,8 @@
 #version 450 core
 // Brute-force reference of the many-light lighting: every input point light evaluated at every
-// pixel with the shading code of the hierarchy's paths (include/lgh_shading.glsl: same BRDF,
-// falloff and singularity clamp), unshadowed. The error metrics of the hierarchy (relative RMSE,
+// pixel with the shading code of the hierarchy's paths (include/lgh_shading.glsl: same BRDF and
+// falloff), unshadowed. The singularity clamp is the hierarchy's (d_min = h_1) or the reference's
+// own (uMinDistance2 >= 0: a fixed d_min^2, 0 for none; docs/GI.md says why both). The error metrics of the hierarchy (relative RMSE,
 // PSNR) are measured against this image. Lights stream through shared memory in batches of 64.
 // With LGH_SHADOWED, the shadowed reference: the lights come in chunks of uChunkCount from
 // uChunkFirst on, each with a shadow ray per pixel traced by the Vulkan side (visibility bit r:
@@ -31,6 +32,7 @@ layout(rgba32f, binding = LGH_IMAGE_OUTPUT) uniform writeonly image2D uOutput;
 #endif
 
 uniform uint uLightCount;  // shadowed: the chunk's lights
+uniform float uMinDistance2;  // < 0: the hierarchy's clamp h_1^2
 
 shared PointLight s_lights[GROUP];
 
@@ -40,7 +42,7 @@ void main() {
   SurfacePoint s;
   bool valid = lghInFrame(pixel) && readSurface(pixel, s);
   vec3 toViewer = valid ? normalize(uCameraPosition - s.position) : vec3(0.0, 0.0, 1.0);
-  float minDistance2 = lghFrame().minDistance2;
+  float minDistance2 = uMinDistance2 >= 0.0 ? uMinDistance2 : lghFrame().minDistance2;
   vec3 radiance = vec3(0.0);
 #ifdef LGH_SHADOWED
   uint first = uChunkFirst;

@@ -279,7 +279,8 @@ void writeOutputs(Pixel px, ivec2 pixel, ivec2 atlasPixel) {
   // A loop the compiler keeps (uSampleCount == LGH_SAMPLES): it runs once per pixel.
   for (int s = 0; s < min(uSampleCount, LGH_SAMPLES); ++s) {
     vec4 pending = reservoirPendingSample(px.sampleLight[s], px.sampleWeight[s]);
-    shadowSamples[base + uint(s)] = lghFinalSample(px.seed, pending, px.runningSum, uint(s));
+    shadowSamples[base + uint(s)] =
+        lghFinalSample(px.seed, pending, px.runningSum, uint(s), px.surface.position);
   }
 #ifdef LGH_OVERDRAW
   imageStore(uOverdraw, pixel, uvec4(px.evaluated));

@@ -26,7 +26,8 @@ void main() {
   uint base = pixelIndex * uint(uSampleCount);
   for (int s = 0; s < uSampleCount; ++s) {
     vec4 pending = shadowSamples[base + uint(s)];
-    shadowSamples[base + uint(s)] = lghFinalSample(pixelSeed, pending, runningSum, uint(s));
+    shadowSamples[base + uint(s)] =
+        lghFinalSample(pixelSeed, pending, runningSum, uint(s), texelFetch(gPosition, pixel, 0).xyz);
   }
 #ifdef LGH_RESOLVE_COPY
   float coverage = texelFetch(gPosition, pixel, 0).w > 0.5 ? 1.0 : 0.0;

@@ -72,6 +72,17 @@ vec3 coneDirection(vec3 axis, float angle, vec2 u) {
   return cosTheta * axis + sinTheta * (cos(phi) * t + sin(phi) * b);
 }
 
+// An LGH sample jittered behind the surface's tangent plane, mirrored to the front: light from
+// behind the plane never reaches the surface (its unshadowed contribution, taken at the grid
+// light's centre, counts only what arrives from the front), so the surface itself must not
+// count as its occluder. Without it, grid lights that merge VPLs of neighbouring surfaces put
+// part of their jitter behind every receiver near them, and the frame came out a third too dark
+// against the shadowed brute force (docs/GI.md).
+vec3 inFrontOf(vec3 target, vec3 surface, vec3 normal) {
+  float behind = dot(target - surface, normal);
+  return behind < 0.0 ? target - 2.0 * behind * normal : target;
+}
+
 vec4 directTarget(int light, int sampleIndex, vec3 origin, uint pixelSeed) {
   Light l = lights[light];
   int type = int(l.positionType.w + 0.5);
@@ -109,6 +120,7 @@ void main() {
   }
   for (int k = 0; k < uLghSampleCount; ++k) {
     vec4 lghSample = lghSamples[pixelIndex * uint(uLghSampleCount) + uint(k)];
-    targets[firstTarget + uint(ray++)] = lghSample.w > 0.0 ? vec4(lghSample.xyz, 1.0) : NO_RAY;
+    targets[firstTarget + uint(ray++)] =
+        lghSample.w > 0.0 ? vec4(inFrontOf(lghSample.xyz, s.position, s.normal), 1.0) : NO_RAY;
   }
 }

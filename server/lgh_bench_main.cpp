@@ -4,6 +4,7 @@
 //   lgh-bench render ...  (see server/bench/render.cpp)
 //   lgh-bench shadows ... (see server/bench/shadows.cpp)
 //   lgh-bench handoff ... (see server/bench/handoff.cpp)
+//   lgh-bench gi ...      (see server/bench/gi.cpp)
 // Subcommands register themselves from server/bench/<name>.cpp (see bench/bench_command.hpp).
 #include <iostream>
 #include <vector>
@@ -20,7 +21,8 @@ int main(int argc, char** argv) try {
   app.require_subcommand(1);
   std::vector<lgh::bench::Command> commands{
       lgh::bench::addConstructCommand(app, context), lgh::bench::addRenderCommand(app, context),
-      lgh::bench::addShadowsCommand(app, context), lgh::bench::addHandoffCommand(app, context)};
+      lgh::bench::addShadowsCommand(app, context), lgh::bench::addHandoffCommand(app, context),
+      lgh::bench::addGiCommand(app, context)};
   CLI11_PARSE(app, argc, argv);
   lgh::cli::setUpLogging(context.logLevel);
   for (const auto& command : commands) {

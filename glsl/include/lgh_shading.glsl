@@ -34,6 +34,7 @@ uniform float uAlpha;           // r_l = alpha * h_l
 uniform int uStartLevel;        // lowest level lighting uses (the paper: 1)
 uniform int uSampleStartLevel;  // lowest level shadow sampling uses (the paper: 2, S1 skipped)
 uniform int uSampleCount;       // k shadow samples per pixel
+uniform float uShadowJitter;    // scale of the samples' positional jitter (1: the paper's)
 uniform uint uSeed;             // frame seed of the reservoir decisions
 uniform vec3 uCameraPosition;
 uniform ivec2 uFrameSize;       // full-resolution frame
@@ -118,14 +119,27 @@ float lghSampleWeight(GridLight light, vec3 radiance) {
   return int(light.level) >= uSampleStartLevel ? luminance(radiance) : 0.0;
 }
 
-// A pending sample slot (reservoirPendingSample) made final: jittered position and weight.
-vec4 lghFinalSample(uint pixelSeed, vec4 pending, float runningSum, uint sampleIndex) {
+// A pending sample slot (reservoirPendingSample) made final: position and weight. The position is
+// the grid light's illumination centre, jittered by uShadowJitter times the paper's jitter (a box
+// with the light's positional variance, reservoirJitter) and folded to the side of the centre the
+// receiver is on. A grid light's VPLs lie on surfaces; a box around their centre reaches through
+// those surfaces, and a shadow ray to a point behind one counts the light as occluded although its
+// VPLs face the receiver: inside a closed sphere, where nothing occludes anything, the paper's
+// jitter took 43% of the light away (docs/GI.md, "Shadow samples").
+vec4 lghFinalSample(uint pixelSeed, vec4 pending, float runningSum, uint sampleIndex,
+                    vec3 receiver) {
   if (pending.y <= 0.0) return vec4(0.0);
   uint lightIndex = floatBitsToUint(pending.x);
   GridLight light = gridLights[lightIndex];
-  uint seed = reservoirLightSeed(pixelSeed, lightIndex);
-  return vec4(reservoirJitter(light.center, light.variance, seed, sampleIndex),
-              reservoirSampleWeight(runningSum, pending.y, uSampleCount));
+  vec3 position = light.center;
+  if (uShadowJitter > 0.0) {
+    uint seed = reservoirLightSeed(pixelSeed, lightIndex);
+    vec3 offset = (reservoirJitter(light.center, light.variance, seed, sampleIndex) - light.center) *
+                  uShadowJitter;
+    if (dot(offset, receiver - light.center) < 0.0) offset = -offset;
+    position += offset;
+  }
+  return vec4(position, reservoirSampleWeight(runningSum, pending.y, uSampleCount));
 }
 
 #ifdef LGH_SAMPLE_STORAGE

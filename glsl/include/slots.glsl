@@ -29,6 +29,22 @@
 #define LGH_IMAGE_OVERDRAW 2
 #define LGH_IMAGE_OUTPUT 3
 
+// ---- global illumination: light paths and the path-traced reference (docs/GI.md) ----------------
+// Their own programs; texture units 0..4 stay the G-buffer (the reference reads it).
+#define LGH_BIND_GI_RAYS 0        // closest-hit batch: 2 x vec4 per ray (vk/shadow_tracer.hpp)
+#define LGH_BIND_GI_HITS 1        // closest-hit batch: HitRecord per ray (include/hit_record.glsl)
+#define LGH_BIND_GI_VERTICES 2    // the scene's triangles (include/hit_surface.glsl)
+#define LGH_BIND_GI_INDICES 3
+#define LGH_BIND_GI_GEOMETRIES 4
+#define LGH_BIND_GI_INSTANCES 5
+#define LGH_BIND_GI_MATERIALS 6   // GiMaterial per material (include/gi_material.glsl)
+#define LGH_BIND_GI_SOURCES 7     // GiSource per light source (include/gi_sources.glsl)
+#define LGH_BIND_GI_PATHS 8       // per light path or camera path: its state
+#define LGH_BIND_GI_VPLS 9        // PointLight per VPL slot (the LGH build's input)
+#define LGH_BIND_GI_LIGHTS 10     // the frame's analytic lights (include/lights.glsl)
+#define LGH_BIND_GI_RADIANCE 11   // the reference's accumulated radiance, vec4 per pixel
+#define LGH_UNIT_GI_ALBEDO 6      // base-colour textures, downsampled into one array
+
 // ---- the LGH build (include/lgh_types.glsl, LGH_BUILD_INTERNALS) --------------------------------
 #define LGH_BIND_BUILD_LIGHTS 0
 #define LGH_BIND_BUILD_LEVELS 1

@@ -1,11 +1,13 @@
 #include "frame_pipeline.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "core/stopwatch.hpp"
+#include "passes/lgh_lighting_common.hpp"
 #include "passes/light_buffer.hpp"
 #include "scene/material_table.hpp"
 
@@ -54,7 +56,8 @@ std::vector<LightDesc> frameLights(const RenderRequest& request, const Scene& sc
   return lights;
 }
 
-FramePipeline::FramePipeline(ShadowDevice* shadowDevice) : shadows_(shadowDevice) {}
+FramePipeline::FramePipeline(ShadowDevice* shadowDevice)
+    : shadows_(shadowDevice), gi_(shadowDevice) {}
 FramePipeline::~FramePipeline() = default;
 
 void FramePipeline::render(const RenderRequest& request, const CachedScene& cached,
@@ -79,12 +82,16 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   LghFrameLighting::ShadowSamples samples;
   if (lgh.enabled) {
     if (!lghLighting_) lghLighting_ = std::make_unique<LghFrameLighting>();
-    lghLighting_->run(lgh, cached, camera, targets_, timer, report, probe);
+    if (probe != nullptr) prepareProbe(request, cached, *probe);
+    const LghGiInputs gi{request.settings.gi,    lights, lightBuffer_.id(),
+                         shadowSettings.tracing, gi_,    materials.materials()};
+    lghLighting_->run(lgh, cached, camera, targets_, timer, report, probe, &gi);
+    if (probe != nullptr) probe->visibility = nullptr;  // it refers to this frame's scene
     samples = lghLighting_->shadowSamples();
   }
-  shadows_.trace(
-      {shadowSettings, lgh.seed, lightBuffer_.id(), lightCount, samples.buffer, samples.count},
-      cached, targets_, timer, report);
+  shadows_.trace({shadowSettings, samplingSeed(lgh), lightBuffer_.id(), lightCount, samples.buffer,
+                  samples.count},
+                 cached, targets_, timer, report);
   {
     gl::ScopedGpuPass pass(timer, "direct lighting");
     directLightingPass_.run({lightBuffer_.id(), lightCount, shadows_.layout(),
@@ -93,6 +100,7 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   }
   const GLuint shadowRatio =
       shadows_.filterLgh(shadowSettings.filterIterations, camera, targets_, timer);
+  if (probe != nullptr && lgh.enabled) finishProbe(shadowRatio, camera, *probe);
   {
     gl::ScopedGpuPass pass(timer, "composite");
     compositePass_.run(output, lgh.enabled, shadowRatio, targets_);
@@ -110,6 +118,7 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   const double readbackMs = readback.elapsedMs();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   timer.collect(report.timings);
+  if (lghLighting_) lghLighting_->collectTimings(report.timings);
   shadows_.collectTimings(report);
   report.timings.add("readback", TimingRow::Clock::Cpu, readbackMs);
   report.decide("lighting", lgh.enabled ? "direct+lgh" : "direct");
@@ -119,6 +128,90 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   report.decide("texture_anisotropy", fmt::format("{:g}", cached.gpu->maxAnisotropy()));
   for (std::string& warning : cached.gpu->takeWarnings()) {
     report.warnings.push_back(std::move(warning));
+  }
+}
+
+void FramePipeline::prepareProbe(const RenderRequest& request, const CachedScene& cached,
+                                 LghFrameProbe& probe) {
+  if (!probe.bruteForce || !probe.shadowedReference) return;
+  const ShadowSettings settings = request.settings.shadows;
+  probe.visibility = [this, settings, &cached](GLuint lights, int first, int count) {
+    return shadows_.traceToPointLights(settings, lights, first, count, cached, targets_);
+  };
+}
+
+namespace {
+
+// A texture's texels as floats, top row first (GL's rows run bottom-up).
+template <typename Texel>
+std::vector<Texel> readTopDown(GLuint texture, int width, int height, GLenum format, int channels,
+                               const auto& convert) {
+  std::vector<float> raw(static_cast<std::size_t>(width) * height * channels);
+  glGetTextureImage(texture, 0, format, GL_FLOAT, static_cast<GLsizei>(raw.size() * sizeof(float)),
+                    raw.data());
+  std::vector<Texel> texels(static_cast<std::size_t>(width) * height);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      texels[static_cast<std::size_t>(height - 1 - y) * width + x] =
+          convert(&raw[(static_cast<std::size_t>(y) * width + x) * channels]);
+    }
+  }
+  return texels;
+}
+
+float srgbToLinear(float c) {
+  return c <= 0.04045F ? c / 12.92F : std::pow((c + 0.055F) / 1.055F, 2.4F);
+}
+
+}  // namespace
+
+void FramePipeline::finishProbe(GLuint shadowRatio, const CameraMatrices& camera,
+                                LghFrameProbe& probe) const {
+  if (!probe.readBack) return;
+  if (probe.readGBuffer) {
+    const GBufferTargets& g = targets_.gbuffer;
+    const int w = targets_.width;
+    const int h = targets_.height;
+    probe.gbuffer.position =
+        readTopDown<glm::vec4>(g.position.id(), w, h, GL_RGBA, 4,
+                               [](const float* v) { return glm::vec4(v[0], v[1], v[2], v[3]); });
+    probe.gbuffer.normal = readTopDown<glm::vec3>(
+        g.normal.id(), w, h, GL_RGB, 3, [](const float* v) { return glm::vec3(v[0], v[1], v[2]); });
+    // The sRGB target's bytes as stored; the lighting passes sample them decoded.
+    probe.gbuffer.baseColor =
+        readTopDown<glm::vec3>(g.albedo.id(), w, h, GL_RGB, 3, [](const float* v) {
+          return glm::vec3(srgbToLinear(v[0]), srgbToLinear(v[1]), srgbToLinear(v[2]));
+        });
+    probe.gbuffer.cameraPosition = camera.position;
+  }
+  const int width = targets_.width;
+  const int height = targets_.height;
+  probe.shadowRatio = FloatImage{};
+  probe.shadowRatio.width = width;
+  probe.shadowRatio.height = height;
+  probe.shadowRatio.rgba.assign(static_cast<std::size_t>(width) * height * 4, 1.0F);
+  if (shadowRatio != 0) {
+    std::vector<float> ratio(static_cast<std::size_t>(width) * height);
+    glGetTextureImage(shadowRatio, 0, GL_RED, GL_FLOAT,
+                      static_cast<GLsizei>(ratio.size() * sizeof(float)), ratio.data());
+    for (int y = 0; y < height; ++y) {  // GL rows run bottom-up, images top-down
+      for (int x = 0; x < width; ++x) {
+        float* pixel =
+            &probe.shadowRatio.rgba[(static_cast<std::size_t>(height - 1 - y) * width + x) * 4];
+        pixel[0] = pixel[1] = pixel[2] = ratio[static_cast<std::size_t>(y) * width + x];
+      }
+    }
+  }
+  std::vector<std::uint8_t> material(static_cast<std::size_t>(width) * height * 4);
+  glGetTextureImage(targets_.gbuffer.material.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                    static_cast<GLsizei>(material.size()), material.data());
+  probe.metallicRoughness.resize(static_cast<std::size_t>(width) * height);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const std::uint8_t* m = &material[(static_cast<std::size_t>(y) * width + x) * 4];
+      probe.metallicRoughness[static_cast<std::size_t>(height - 1 - y) * width + x] =
+          glm::vec2(m[0] / 255.0F, m[1] / 255.0F);
+    }
   }
 }
 

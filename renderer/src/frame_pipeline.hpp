@@ -1,5 +1,6 @@
-// The order of one frame's passes (docs/ARCHITECTURE.md, "One frame"): G-buffer -> [VPLs + LGH
-// build + LGH lighting into the indirect target, picking k shadow samples per pixel] -> shadow
+// The order of one frame's passes (docs/ARCHITECTURE.md, "One frame"): G-buffer -> [VPLs (random
+// on surfaces, or light paths: settings.gi) + LGH build + LGH lighting into the indirect target,
+// picking k shadow samples per pixel] -> shadow
 // rays (GL setup, Vulkan trace) -> direct lighting with visibility -> [LGH shadow ratio +
 // filter] -> composite -> [forward pass of blended surfaces] -> readback. Owns the passes and the
 // frame targets; the renderer owns the context and the scene cache. The LGH part
@@ -10,6 +11,7 @@
 #include <memory>
 
 #include "frame_report.hpp"
+#include "gi/gi_tracing.hpp"
 #include "gl/gpu_timer.hpp"
 #include "passes/composite_pass.hpp"
 #include "passes/direct_lighting_pass.hpp"
@@ -35,10 +37,16 @@ class FramePipeline {
               FrameReport& report, LghFrameProbe* probe = nullptr);
 
  private:
+  // The probe's shadowed reference traces its rays here; its outputs that need the shadows.
+  void prepareProbe(const RenderRequest& request, const CachedScene& scene, LghFrameProbe& probe);
+  void finishProbe(GLuint shadowRatio, const CameraMatrices& camera, LghFrameProbe& probe) const;
+
+ private:
   FrameTargets targets_;
   gl::SizedBuffer lightBuffer_;
   GBufferPass gbufferPass_;
   ShadowFrame shadows_;
+  GiTracing gi_;
   DirectLightingPass directLightingPass_;
   CompositePass compositePass_;
   ForwardBlendPass forwardBlendPass_;

@@ -50,5 +50,7 @@ Command addRenderCommand(CLI::App& app, const cli::ContextFlags& context);
 Command addShadowsCommand(CLI::App& app, const cli::ContextFlags& context);
 // `lgh-bench handoff`: the GL -> Vulkan hand-off in and out of process (server/bench/handoff.cpp).
 Command addHandoffCommand(CLI::App& app, const cli::ContextFlags& context);
+// `lgh-bench gi`: whole GI frames, Tables 2 and 3, Fig. 5, quality (server/bench/gi.cpp).
+Command addGiCommand(CLI::App& app, const cli::ContextFlags& context);
 
 }  // namespace lgh::bench

@@ -22,12 +22,14 @@ constexpr const char* kDescription =
 
 constexpr const char* kFooter =
     "Exit status: 0 after a clean shutdown (SIGTERM/SIGINT), 1 when the GL context or the\n"
-    "self-test render fails, 2 for a bad command line. Documentation: docs/DAEMON.md.";
+    "self-test render fails, 2 for a bad command line, 3 when the watchdog found the render\n"
+    "thread hung. Documentation: docs/DAEMON.md.";
 
 // Numbers as the command line sees them; converted to DaemonConfig's units afterwards.
 struct RawFlags {
   double deadlineSeconds = 30.0;
   double graceSeconds = 10.0;
+  double watchdogSeconds = 60.0;
   std::size_t sceneCacheMb = 512;
   std::size_t maxBodyMb = 64;
   int testRenderDelayMs = 0;
@@ -101,6 +103,14 @@ void addRenderFlags(CLI::App& app, DaemonConfig& config, RawFlags& raw) {
   app.add_option("--scene-cache-mb", raw.sceneCacheMb,
                  "GPU memory budget of the scene cache (LRU by content hash), MiB")
       ->envname("LGHD_SCENE_CACHE_MB")
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--watchdog-seconds", raw.watchdogSeconds,
+                 "a render still running this long past its deadline (or a renderer start-up "
+                 "this long past 30 s) counts as a hung GPU: lghd answers 503, turns not ready and "
+                 "exits 3 for its supervisor to restart it; 0: no watchdog")
+      ->envname("LGHD_WATCHDOG_SECONDS")
+      ->check(CLI::Range(0.0, 86400.0))
       ->capture_default_str()
       ->group(group);
   app.add_option("--test-render-delay-ms", raw.testRenderDelayMs,
@@ -205,6 +215,7 @@ Duration fromSeconds(double seconds) {
 void applyRawFlags(const RawFlags& raw, DaemonConfig& config) {
   config.deadline = fromSeconds<std::chrono::milliseconds>(raw.deadlineSeconds);
   config.grace = fromSeconds<std::chrono::milliseconds>(raw.graceSeconds);
+  config.watchdog = fromSeconds<std::chrono::milliseconds>(raw.watchdogSeconds);
   config.sceneCacheBytes = raw.sceneCacheMb << 20;
   config.limits.maxBodyBytes = raw.maxBodyMb << 20;
   config.testRenderDelay = std::chrono::milliseconds(raw.testRenderDelayMs);

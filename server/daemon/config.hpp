@@ -46,6 +46,7 @@ struct DaemonConfig {
   int queueDepth = 16;
   std::chrono::milliseconds deadline{30'000};
   std::chrono::milliseconds grace{10'000};
+  std::chrono::milliseconds watchdog{60'000};  // past a render's deadline; 0: off
   std::size_t sceneCacheBytes = 512ULL << 20;
   std::string logFormat = "json";  // json | text
   std::chrono::milliseconds testRenderDelay{0};

@@ -2,6 +2,7 @@
 // the metrics.
 #pragma once
 
+#include "benchmark_runner.hpp"
 #include "config.hpp"
 #include "jobs.hpp"
 #include "metrics.hpp"
@@ -15,6 +16,7 @@ struct DaemonContext {
   RenderQueue& queue;
   Metrics& metrics;
   JobStore& jobs;
+  BenchmarkRunner* benchmarks = nullptr;  // POST /v1/benchmark; none: 503
 };
 
 }  // namespace lghd

@@ -209,6 +209,7 @@ const std::vector<RouteSpec>& routeTable() {
       {"/v1/jobs/{id}/result", {"GET"}, {}}, {"/v1/info", {"GET"}, {kJson}},
       {"/healthz", {"GET"}, {kJson}},        {"/readyz", {"GET"}, {kJson}},
       {"/metrics", {"GET"}, {"text/plain"}}, {"/openapi.json", {"GET"}, {kJson}},
+      {"/v1/benchmark", {"POST", "GET"}, {kJson}}, {"/v1/benchmark/result", {"GET"}, {kJson}},
       {"/{schema}", {"GET"}, {kJson}},       {"/proto/{schema}", {"GET"}, {kJson}},
   };
   return routes;

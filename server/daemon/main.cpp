@@ -12,6 +12,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "benchmark_runner.hpp"
 #include "config.hpp"
 #include "daemon_context.hpp"
 #include "logging.hpp"
@@ -35,6 +36,7 @@ void stopListening(httplib::Server& server, const std::atomic<bool>& listenRetur
 }
 
 void shutdownSequence(const DaemonConfig& config, RenderQueue& queue, JobStore& jobs,
+                      BenchmarkRunner& benchmarks,
                       httplib::Server& server, const std::atomic<bool>& listenReturned) {
   logging::event(spdlog::level::info, "shutdown", {{"grace_ms", config.grace.count()}});
   queue.stopAccepting();
@@ -42,6 +44,7 @@ void shutdownSequence(const DaemonConfig& config, RenderQueue& queue, JobStore& 
   const bool drained = queue.drain(config.grace);
   jobs.stop();  // the runner's next render would be refused: unfinished jobs fail with 503
   logging::event(spdlog::level::info, "drained", {{"all_finished", drained}});
+  benchmarks.stop();
 }
 
 nlohmann::json startupFields(const DaemonConfig& config, int port) {
@@ -59,11 +62,12 @@ int serve(const DaemonConfig& config) {
   ShutdownSupervisor::blockSignals();
   Metrics metrics;
   RenderQueue queue({config.rendererOptions(), static_cast<std::size_t>(config.queueDepth),
-                     config.testRenderDelay},
+                     config.testRenderDelay, config.watchdog},
                     metrics);
   JobStore jobs(config.jobs, queue);
   HttpServer server;
-  DaemonContext context{config, config.requestLimits(), queue, metrics, jobs};
+  BenchmarkRunner benchmarks(config.rendererOptions());
+  DaemonContext context{config, config.requestLimits(), queue, metrics, jobs, &benchmarks};
   configureServer(server, context);
 
   const int port = bindServer(server, config.host, config.port);
@@ -77,8 +81,11 @@ int serve(const DaemonConfig& config) {
 
   std::atomic<bool> listenReturned = false;
   ShutdownSupervisor supervisor;
-  supervisor.start([&] { shutdownSequence(config, queue, jobs, server, listenReturned); });
-  queue.start([&supervisor](const std::string& reason) { supervisor.requestStop(1, reason); });
+  supervisor.start(
+      [&] { shutdownSequence(config, queue, jobs, benchmarks, server, listenReturned); });
+  queue.start([&supervisor](int exitCode, const std::string& reason) {
+    supervisor.requestStop(exitCode, reason);
+  });
   jobs.start();
   server.listen_after_bind();
   listenReturned = true;
@@ -86,7 +93,9 @@ int serve(const DaemonConfig& config) {
   supervisor.join();
 
   jobs.stop();  // after a fatal context failure no shutdown sequence ran
-  if (!queue.stop(kRenderThreadStopWait)) {
+  // A hung render thread will not end: do not wait for it.
+  const bool hung = supervisor.exitCode() == kExitRenderHung;
+  if (!queue.stop(hung ? std::chrono::seconds(0) : kRenderThreadStopWait)) {
     logging::event(spdlog::level::critical, "render_thread_stuck",
                    {{"note", "exiting without releasing the GL context"}});
     spdlog::default_logger()->flush();
@@ -103,6 +112,9 @@ int serve(const DaemonConfig& config) {
 int main(int argc, char** argv) {
   if (argc == 2 && std::string_view(argv[1]) == lghd::kProbeVulkanFlag) {
     return lghd::printVulkanProbe();
+  }
+  if (argc == 4 && std::string_view(argv[1]) == lghd::kRunBenchmarkFlag) {
+    return lghd::runBenchmarkChild(argv[2], argv[3]);
   }
   lghd::ParsedConfig parsed = lghd::parseConfig(argc, argv);
   if (!parsed.config) return parsed.exitCode;

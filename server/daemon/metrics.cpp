@@ -152,6 +152,21 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
         "1 when the Vulkan shadow tracer is up, 0 when this machine cannot trace shadows (see "
         "/v1/info), -1 until a frame has asked for shadows.",
         gauges.shadowTracer);
+  header(out, "lghd_gl_objects", "gauge",
+         "Live GL objects by kind (a leak shows as growth over many renders).");
+  for (const auto& [kind, count] : gauges.resources.glObjects) {
+    out += fmt::format("lghd_gl_objects{{kind=\"{}\"}} {}\n", escapeLabel(kind), count);
+  }
+  const auto bytesOrUnknown = [](std::int64_t kib) {
+    return kib >= 0 ? static_cast<double>(kib) * 1024.0 : -1.0;
+  };
+  gauge(out, "lghd_gpu_memory_available_bytes",
+        "GPU memory available as the driver reports it (GL_NVX_gpu_memory_info); -1 where it "
+        "does not say.",
+        bytesOrUnknown(gauges.resources.gpuMemoryAvailableKiB));
+  gauge(out, "lghd_gpu_memory_total_bytes",
+        "GPU memory in all (GL_NVX_gpu_memory_info); -1 where the driver does not say.",
+        bytesOrUnknown(gauges.resources.gpuMemoryTotalKiB));
 
   std::lock_guard lock(mutex_);
   header(out, "lghd_http_requests_total", "counter",

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "lgh/resource_stats.hpp"
 #include "lgh/timing.hpp"
 
 namespace lghd {
@@ -40,6 +41,7 @@ struct RuntimeGauges {
   std::size_t sceneCacheBudgetBytes = 0;
   // The shadow side: 1 ready, 0 unavailable, -1 no frame has asked for shadows yet.
   int shadowTracer = -1;
+  lgh::ResourceStats resources;  // live GL objects and GPU memory, as of the last render
 };
 
 class Metrics {

@@ -12,6 +12,10 @@
 namespace lghd {
 namespace {
 
+// What a renderer start-up (GL context, Vulkan device, self-test render) may take before the
+// watchdog's time starts to count, as a render's deadline does for a render.
+constexpr auto kStartUpAllowance = std::chrono::seconds(30);
+
 lgh::RenderRequest selfTestRequest() {
   lgh::RenderRequest request;  // the demo scene
   request.output.width = 64;
@@ -31,6 +35,9 @@ RenderQueue::~RenderQueue() {
 
 void RenderQueue::start(FatalHandler onFatal) {
   onFatal_ = std::move(onFatal);
+  if (options_.watchdog.count() > 0) {
+    watchdog_ = std::make_unique<RenderWatchdog>([this] { declareHung(); });
+  }
   thread_ = std::thread([this] { run(); });
   // In a child process (see vulkan_probe_process.hpp), waited for on a thread of its own so that
   // readiness does not wait for it (a Vulkan instance takes a large part of a second to make). It
@@ -104,7 +111,7 @@ std::shared_ptr<RenderJob> RenderQueue::submit(std::vector<lgh::RenderRequest> r
       throw unavailable("starting: the GL context and its self-test render are not ready yet")
           .withRetryAfter(1);
     }
-    if (state_ == State::Failed) throw unavailable("no working GL context: " + failure_);
+    if (state_ == State::Failed) throw unavailable(failure_);
     if (jobs_.size() >= options_.capacity) {
       throw queueFull(fmt::format("the render queue is full ({} waiting)", jobs_.size()),
                       retryAfterSeconds());
@@ -132,7 +139,7 @@ std::string RenderQueue::notReadyReason() const {
     case State::Starting:
       return "starting: GL context and self-test render not done yet";
     case State::Failed:
-      return "no working GL context: " + failure_;
+      return failure_;
     default:
       return "";
   }
@@ -160,6 +167,7 @@ RuntimeGauges RenderQueue::gauges() const {
   gauges.sceneCacheEntries = cacheStats_.entries;
   gauges.sceneCacheBytes = cacheStats_.bytes;
   gauges.sceneCacheBudgetBytes = options_.renderer.sceneCacheBytes;
+  gauges.resources = resources_;
   gauges.shadowTracer = shadowInfo_.status == "ready"         ? 1
                         : shadowInfo_.status == "unavailable" ? 0
                                                               : -1;
@@ -180,6 +188,7 @@ void RenderQueue::failAll(RenderJob& job, const ApiError& error) {
 
 bool RenderQueue::drain(Clock::duration grace) {
   std::unique_lock lock(mutex_);
+  if (state_ == State::Failed) return jobs_.empty() && !current_;  // nothing left can finish
   const bool idle =
       idleCondition_.wait_for(lock, grace, [this] { return jobs_.empty() && !current_; });
   if (idle) return true;
@@ -228,22 +237,25 @@ void RenderQueue::run() {
 
 bool RenderQueue::bringUpRenderer() {
   const auto start = Clock::now();
+  armWatchdog(start + kStartUpAllowance + options_.watchdog);
   try {
     renderer_ = std::make_unique<lgh::Renderer>(options_.renderer);
     const lgh::RenderResult selfTest = renderer_->render(selfTestRequest());
     if (selfTest.encoded.empty()) throw internalError("the self-test render produced no image");
+    disarmWatchdog();
   } catch (const std::exception& error) {
+    disarmWatchdog();
     renderer_.reset();
     {
       std::lock_guard lock(mutex_);
       state_ = State::Failed;
-      failure_ = error.what();
-      const ApiError noContext = unavailable(std::string("no working GL context: ") + error.what());
+      failure_ = std::string("no working GL context: ") + error.what();
+      const ApiError noContext = unavailable(failure_);
       for (const auto& job : jobs_) failAll(*job, noContext);
       jobs_.clear();
     }
     logging::event(spdlog::level::critical, "renderer_failed", {{"error", error.what()}});
-    if (onFatal_) onFatal_(error.what());
+    if (onFatal_) onFatal_(1, error.what());
     return false;
   }
   publishRendererState();
@@ -305,9 +317,11 @@ void RenderQueue::runJob(RenderJob& job) {
 void RenderQueue::renderTicket(const RenderJob& job, RenderTicket& ticket) {
   ticket.markStarted();
   const auto start = Clock::now();
+  armWatchdog(job.startDeadline + options_.watchdog);
   if (options_.testRenderDelay.count() > 0) std::this_thread::sleep_for(options_.testRenderDelay);
   try {
     lgh::RenderResult result = renderer_->render(ticket.request());
+    disarmWatchdog();
     publishRendererState();
     metrics_.recordRenderTimes(result.timings, secondsBetween(job.enqueued, start),
                                result.sceneCacheHit);
@@ -322,10 +336,15 @@ void RenderQueue::renderTicket(const RenderJob& job, RenderTicket& ticket) {
                      {{"request_id", job.requestId}, {"render_ms", millisecondsSince(start)}});
     }
   } catch (const lgh::Error& error) {
+    disarmWatchdog();
     ticket.fail(fromLghError(error));
     metrics_.recordRender("error");
-    if (error.code() == lgh::ErrorCode::Internal) recoverRenderer(error.what());
+    // A GL failure may have broken the context, and a lost one (GPU reset) certainly has.
+    if (error.code() == lgh::ErrorCode::Internal || !renderer_->healthy()) {
+      recoverRenderer(error.what());
+    }
   } catch (const std::exception& error) {
+    disarmWatchdog();
     ticket.fail(internalError(error.what()));
     metrics_.recordRender("error");
     recoverRenderer(error.what());
@@ -335,12 +354,57 @@ void RenderQueue::renderTicket(const RenderJob& job, RenderTicket& ticket) {
   averageRenderSeconds_ = 0.8 * averageRenderSeconds_ + 0.2 * seconds;
 }
 
+// --- The watchdog -------------------------------------------------------------------------------
+
+void RenderQueue::armWatchdog(Clock::time_point hungAfter) {
+  if (watchdog_) watchdog_->arm(hungAfter);
+}
+
+void RenderQueue::disarmWatchdog() {
+  if (watchdog_) watchdog_->disarm();
+}
+
+// On the watchdog's thread, while the render thread is stuck: answer everyone, turn not ready and
+// have the process end (a context stuck in a driver call cannot be replaced in this process).
+void RenderQueue::declareHung() {
+  const auto seconds = std::chrono::duration<double>(options_.watchdog).count();
+  const std::string reason = fmt::format(
+      "the render thread has been stuck in one render (or renderer start-up) for {:g} s past "
+      "its deadline (--watchdog-seconds): the GPU or its driver hangs; lghd exits so that its "
+      "supervisor starts it again",
+      seconds);
+  std::string requestId;
+  {
+    std::lock_guard lock(mutex_);
+    state_ = State::Failed;
+    failure_ = reason;
+    const ApiError hung = unavailable(reason).withRetryAfter(5);
+    for (const auto& job : jobs_) failAll(*job, hung);
+    jobs_.clear();
+    if (current_) {
+      requestId = current_->requestId;
+      failAll(*current_, hung);
+    }
+  }
+  metrics_.recordRender("hung");
+  logging::event(spdlog::level::critical, "render_hung",
+                 {{"request_id", requestId}, {"watchdog_s", seconds}, {"reason", reason}});
+  if (onFatal_) onFatal_(kExitRenderHung, reason);
+}
+
 void RenderQueue::publishRendererState() {
   const lgh::Renderer::CacheStats stats = renderer_->sceneCacheStats();
   lgh::ShadowInfo shadows = renderer_->shadowInfo();
+  lgh::ResourceStats resources = renderer_->resourceStats();
   std::lock_guard lock(mutex_);
   cacheStats_ = stats;
   shadowInfo_ = std::move(shadows);
+  resources_ = std::move(resources);
+}
+
+lgh::ResourceStats RenderQueue::resources() const {
+  std::lock_guard lock(mutex_);
+  return resources_;
 }
 
 lgh::ShadowInfo RenderQueue::shadows() const {

@@ -6,7 +6,10 @@
 // then renders jobs in arrival order. Deadlines:
 //  - a job still queued when its start deadline passes is answered 504 without rendering;
 //  - a render still running at its waiter's deadline is answered 504 by the waiter; the render
-//    thread finishes it and discards the result, so the context stays healthy for the next job.
+//    thread finishes it and discards the result, so the context stays healthy for the next job;
+//  - a render still running --watchdog-seconds past its deadline (or a start-up of the renderer
+//    running that long past 30 s) counts as hung: every waiting request is answered 503, the daemon
+//    turns not ready and exits with kExitRenderHung so that its supervisor starts a fresh process.
 #pragma once
 
 #include <atomic>
@@ -24,8 +27,12 @@
 #include "lgh/vulkan_info.hpp"
 #include "metrics.hpp"
 #include "render_ticket.hpp"
+#include "render_watchdog.hpp"
 
 namespace lghd {
+
+// lghd's exit status after its watchdog found the render thread hung (1: no working GL context).
+inline constexpr int kExitRenderHung = 3;
 
 struct RenderJob {
   std::string requestId;
@@ -41,15 +48,18 @@ class RenderQueue {
     lgh::RendererOptions renderer;
     std::size_t capacity = 16;
     std::chrono::milliseconds testRenderDelay{0};
+    std::chrono::milliseconds watchdog{0};  // 0: no watchdog
   };
-  using FatalHandler = std::function<void(const std::string& reason)>;
+  // Ends the process with `exitCode` (1: no working GL context, kExitRenderHung).
+  using FatalHandler = std::function<void(int exitCode, const std::string& reason)>;
 
   RenderQueue(Options options, Metrics& metrics);
   ~RenderQueue();
   RenderQueue(const RenderQueue&) = delete;
   RenderQueue& operator=(const RenderQueue&) = delete;
 
-  // Starts the render thread; `onFatal` runs (on that thread) when no working context can be had.
+  // Starts the render thread; `onFatal` runs when no working context can be had (on the render
+  // thread) or when the render thread hangs (on the watchdog's).
   void start(FatalHandler onFatal);
 
   // Queues the renders as one job. Throws ApiError: 503 while starting or shutting down, 429 with
@@ -68,6 +78,8 @@ class RenderQueue {
   RuntimeGauges gauges() const;
   // The renderer's shadow side, as of its last render.
   lgh::ShadowInfo shadows() const;
+  // Live GL objects and GPU memory, as of the last render.
+  lgh::ResourceStats resources() const;
 
   // Shutdown, in this order: refuse new jobs (503); let queued jobs finish for up to `grace`, then
   // answer what is left 503 (returns whether everything finished); end the render thread, waiting
@@ -84,6 +96,9 @@ class RenderQueue {
   void endVulkanProbe();
   bool bringUpRenderer();
   void recoverRenderer(const std::string& reason);
+  void armWatchdog(Clock::time_point hungAfter);
+  void disarmWatchdog();
+  void declareHung();
   std::shared_ptr<RenderJob> takeJob();
   void runJob(RenderJob& job);
   void renderTicket(const RenderJob& job, RenderTicket& ticket);
@@ -121,7 +136,9 @@ class RenderQueue {
   std::thread vulkanProbe_;
   lgh::Renderer::CacheStats cacheStats_;
   lgh::ShadowInfo shadowInfo_;
+  lgh::ResourceStats resources_;
   double averageRenderSeconds_ = 0.1;
+  std::unique_ptr<RenderWatchdog> watchdog_;
   std::thread thread_;
 };
 

@@ -17,5 +17,7 @@ void addJobRoutes(httplib::Server& server, DaemonContext& context);
 void addStatusRoutes(httplib::Server& server, DaemonContext& context);
 // GET /openapi.json and the JSON Schemas it references
 void addDocumentRoutes(httplib::Server& server);
+// POST /v1/benchmark, GET /v1/benchmark, GET /v1/benchmark/result (routes_benchmark.cpp)
+void addBenchmarkRoutes(httplib::Server& server, DaemonContext& context);
 
 }  // namespace lghd

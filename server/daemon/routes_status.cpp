@@ -62,6 +62,7 @@ json infoJson(const DaemonContext& context) {
           {"device", device ? device->toJson() : json()},
           {"vulkan", vulkanJson(context.queue.vulkan())},
           {"shadows", context.queue.shadows().toJson()},
+          {"resources", context.queue.resources().toJson()},
           {"limits", limitsJson(context.config)},
           {"queue",
            {{"depth", gauges.queueDepth},

@@ -182,6 +182,7 @@ void configureServer(httplib::Server& server, DaemonContext& context) {
   addJobRoutes(server, context);
   addStatusRoutes(server, context);
   addDocumentRoutes(server);
+  addBenchmarkRoutes(server, context);
 }
 
 bool HttpServer::raiseListenBacklog(int backlog) { return ::listen(svr_sock_, backlog) == 0; }

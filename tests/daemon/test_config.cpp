@@ -86,6 +86,7 @@ TEST_F(DaemonConfigTest, Defaults) {
   EXPECT_EQ(config.queueDepth, 16);
   EXPECT_EQ(config.deadline, std::chrono::milliseconds(30'000));
   EXPECT_EQ(config.grace, std::chrono::milliseconds(10'000));
+  EXPECT_EQ(config.watchdog, std::chrono::milliseconds(60'000));
   EXPECT_EQ(config.sceneCacheBytes, 512ULL << 20);
   EXPECT_EQ(config.logFormat, "json");
   EXPECT_EQ(config.testRenderDelay, std::chrono::milliseconds(0));
@@ -132,6 +133,7 @@ TEST_F(DaemonConfigTest, GoodFlagsInDaemonUnits) {
       {"--http-threads", "4"},
       {"--auth-token", "s3cret"},
       {"--grace-seconds", "0"},
+      {"--watchdog-seconds", "1.5"},
       {"--log-format", "text"},
       {"--queue-depth", "3"},
       {"--deadline-seconds", "2.5"},
@@ -161,6 +163,7 @@ TEST_F(DaemonConfigTest, GoodFlagsInDaemonUnits) {
   EXPECT_EQ(config.httpThreads, 4);
   EXPECT_EQ(config.authToken, "s3cret");
   EXPECT_EQ(config.grace, std::chrono::milliseconds(0));
+  EXPECT_EQ(config.watchdog, std::chrono::milliseconds(1500));
   EXPECT_EQ(config.logFormat, "text");
   EXPECT_EQ(config.queueDepth, 3);
   EXPECT_EQ(config.deadline, std::chrono::milliseconds(2500));
@@ -254,6 +257,7 @@ TEST_F(DaemonConfigTest, BadFlagsExitWithStatus2AndSayWhy) {
       {{"--queue-depth", "0"}, {"--queue-depth", "0"}},
       {{"--deadline-seconds", "0"}, {"--deadline-seconds", "0"}},
       {{"--grace-seconds", "-1"}, {"--grace-seconds", "-1"}},
+      {{"--watchdog-seconds", "-2"}, {"--watchdog-seconds", "-2"}},
       {{"--log-format", "xml"}, {"--log-format", "xml"}},
       {{"--max-width", "0"}, {"--max-width", "0"}},
       {{"--max-body-mb", "-3"}, {"--max-body-mb", "-3"}},

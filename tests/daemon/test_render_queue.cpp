@@ -112,9 +112,10 @@ class RenderQueueTest : public testing::Test {
 
   RenderQueue& startedQueue(RenderQueue::Options options) {
     queue_ = std::make_unique<RenderQueue>(std::move(options), metrics_);
-    queue_->start([this](const std::string& reason) {
+    queue_->start([this](int exitCode, const std::string& reason) {
       std::lock_guard lock(fatalMutex_);
       fatal_ = reason;
+      fatalExitCode_ = exitCode;
     });
     return *queue_;
   }
@@ -122,6 +123,11 @@ class RenderQueueTest : public testing::Test {
   std::string fatal() {
     std::lock_guard lock(fatalMutex_);
     return fatal_;
+  }
+
+  int fatalExitCode() {
+    std::lock_guard lock(fatalMutex_);
+    return fatalExitCode_;
   }
 
   bool idle() const {
@@ -135,6 +141,7 @@ class RenderQueueTest : public testing::Test {
  private:
   std::mutex fatalMutex_;
   std::string fatal_;
+  int fatalExitCode_ = 0;
 };
 
 TEST_F(RenderQueueTest, RefusesJobsWhileStarting) {
@@ -270,6 +277,41 @@ TEST_F(RenderQueueTest, RenderPastTheWaitersDeadlineIs504AndDiscarded) {
   EXPECT_FALSE(next->tickets[0]->wait(farDeadline()).encoded.empty());
 }
 
+// A render still running --watchdog-seconds past its deadline counts as hung (a GL call that
+// never returns; the test render delay stands in for it): every waiting request is answered 503,
+// the queue turns not ready and the process is asked to exit with kExitRenderHung.
+TEST_F(RenderQueueTest, RenderHungPastTheWatchdogIsFatal) {
+  RenderQueue::Options options = queueOptions(4, 1500ms);
+  options.watchdog = 200ms;
+  RenderQueue& queue = readyQueue(options);
+  const auto hung = queue.submit(renders(1), "hung", Clock::now() + 100ms);
+  const auto waiting = queue.submit(renders(1), "waiting", farDeadline());
+  const Clock::time_point submitted = Clock::now();
+  const ApiError error = errorOf(*waiting->tickets[0], farDeadline());
+  EXPECT_LT(millisecondsSince(submitted), 1200.0) << "answered by the watchdog, not the render";
+  EXPECT_EQ(error.status(), 503);
+  EXPECT_EQ(error.retryAfterSeconds(), 5);
+  EXPECT_NE(error.message().find("--watchdog-seconds"), std::string::npos) << error.message();
+  EXPECT_EQ(errorOf(*hung->tickets[0], farDeadline()).status(), 503);
+  ASSERT_TRUE(waitUntil([&] { return !fatal().empty(); }));
+  EXPECT_EQ(fatalExitCode(), kExitRenderHung);
+  EXPECT_FALSE(queue.ready());
+  EXPECT_NE(queue.notReadyReason().find("stuck"), std::string::npos) << queue.notReadyReason();
+  EXPECT_EQ(submitError(queue, renders(1)).status(), 503);
+  EXPECT_EQ(rendersTotal(metrics_, "hung"), 1.0);
+}
+
+// A render that ends within the watchdog's time does not fire it.
+TEST_F(RenderQueueTest, WatchdogStaysQuietForRendersThatEnd) {
+  RenderQueue::Options options = queueOptions(4, 50ms);
+  options.watchdog = 2000ms;
+  RenderQueue& queue = readyQueue(options);
+  const auto job = queue.submit(renders(3), "fine", farDeadline());
+  for (const auto& ticket : job->tickets) EXPECT_FALSE(ticket->wait(farDeadline()).encoded.empty());
+  EXPECT_TRUE(fatal().empty()) << fatal();
+  EXPECT_TRUE(queue.ready());
+}
+
 // The client of a batch went away: renders not started yet are skipped.
 TEST_F(RenderQueueTest, CancelledJobSkipsItsRenders) {
   RenderQueue& queue = readyQueue(queueOptions(4, 200ms));
@@ -366,6 +408,7 @@ TEST_F(RenderQueueTest, NoContextIsFatalAnd503) {
   RenderQueue& queue = startedQueue(options);
   ASSERT_TRUE(waitUntil([&] { return !fatal().empty(); }));
   EXPECT_NE(fatal().find("GPU index 999"), std::string::npos) << fatal();
+  EXPECT_EQ(fatalExitCode(), 1);
   EXPECT_FALSE(queue.ready());
   EXPECT_EQ(queue.notReadyReason(), "no working GL context: " + fatal());
   EXPECT_FALSE(queue.device());

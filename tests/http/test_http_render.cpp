@@ -236,7 +236,7 @@ TEST_F(RenderTest, OpenApiAndItsSchemasAreServed) {
   const json openapi = json::parse(document->body);
   EXPECT_EQ(openapi["openapi"].get<std::string>().substr(0, 2), "3.");
   for (const char* path : {"/v1/render", "/v1/thumbnails", "/v1/info", "/healthz", "/readyz",
-                           "/metrics", "/openapi.json"}) {
+                           "/metrics", "/openapi.json", "/v1/benchmark", "/v1/benchmark/result"}) {
     EXPECT_TRUE(openapi["paths"].contains(path)) << path;
   }
   const auto schema = http->Get("/render-request.schema.json");

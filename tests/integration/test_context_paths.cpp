@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <thread>
@@ -91,6 +92,18 @@ TEST(ContextPaths, OsmesaReportsItsPathAndGl45) {
   EXPECT_EQ(result.device.contextPath, "osmesa");
 }
 
+// Mesa's EGL gives a robust context with reset notification (through EGL 1.5's attributes, the
+// ones NVIDIA's EGL accepts too); OSMesa has no way to ask for one.
+TEST(ContextPaths, EglContextsAreRobustOsmesaIsNot) {
+  for (const auto backend : {lgh::ContextBackend::Surfaceless, lgh::ContextBackend::OSMesa}) {
+    lgh::RendererOptions options;
+    options.backend = backend;
+    lgh::Renderer renderer(options);
+    EXPECT_EQ(renderer.device().robustContext, backend != lgh::ContextBackend::OSMesa)
+        << renderer.device().contextPath;
+  }
+}
+
 TEST(ContextPaths, EachContextOwnsItsFunctionTable) {
   auto surfaceless = lgh::GlContext::create([] {
     lgh::RendererOptions options;
@@ -118,6 +131,36 @@ TEST(ContextPaths, RenderersShareAThreadAndADisplay) {
     second.reset();  // while `first`'s context is the current one
     EXPECT_TRUE(first.render(request).image.rgba == reference.rgba) << "round " << round;
   }
+}
+
+// A GPU reset ends a renderer (the test hook reports one after two frames): that frame and every
+// later one fail with Unavailable, and a new renderer renders as before.
+TEST(ContextPaths, ALostContextEndsTheRendererAndANewOneRenders) {
+  const auto request = lgh::parseRenderRequest(R"({"output": {"width": 24, "height": 16}})");
+  lgh::FloatImage reference;
+  {
+    lgh::Renderer clean(lgh::test::rendererOptions());
+    reference = clean.render(request).image;
+  }
+  setenv("LGH_DEBUG_CONTEXT_LOSS_AFTER", "2", 1);
+  {
+    lgh::Renderer renderer(lgh::test::rendererOptions());
+    unsetenv("LGH_DEBUG_CONTEXT_LOSS_AFTER");
+    EXPECT_TRUE(renderer.render(request).image.rgba == reference.rgba);
+    EXPECT_TRUE(renderer.render(request).image.rgba == reference.rgba);
+    EXPECT_TRUE(renderer.healthy());
+    for (int i = 0; i < 2; ++i) {
+      try {
+        renderer.render(request);
+        FAIL() << "a lost context rendered";
+      } catch (const lgh::Error& error) {
+        EXPECT_EQ(error.code(), lgh::ErrorCode::Unavailable) << error.what();
+      }
+      EXPECT_FALSE(renderer.healthy());
+    }
+  }
+  lgh::Renderer again(lgh::test::rendererOptions());
+  EXPECT_TRUE(again.render(request).image.rgba == reference.rgba);
 }
 
 TEST(ContextPathsDeathTest, GlCallWithoutContextNamesTheCall) {

@@ -7,7 +7,11 @@
 //    <= 2e-3: fp16 storage and float summation order) and, where the raster path's fragments of a
 //    pixel run in order (llvmpipe; interlock on GPUs), the same reservoirs (F within 1e-4
 //    relative, >= 99% of the sample slots identical: both stream the lights in buffer order);
-//  - the relative RMSE against the brute-force image falls as alpha grows (1 -> 2 -> 4);
+//  - the hierarchy's error against the brute force over the same VPLs (same clamp: the hierarchy
+//    alone), per material class and as a brightness bias, falls as alpha grows (1 -> 2 -> 4) and
+//    stays within bounds on the diffuse pixels (docs/GI.md, "Metrics");
+//  - the brute force itself matches an independent CPU reference of the lighting (double
+//    precision, the glTF BRDF written from the specification);
 //  - interleaving's extra error is bounded (2x2, 4x4), and its images agree across paths;
 //  - the GLSL reservoir chooses light i with probability f_i / sum f (chi-square, p > 1e-3) and
 //    makes exactly the choices of its C++ mirror;
@@ -27,6 +31,7 @@
 #include "context/gl_context.hpp"
 #include "frame_pipeline.hpp"
 #include "gl/shader_library.hpp"
+#include "lgh/testing/cpu_lighting.hpp"
 #include "lgh/testing/image_metrics.hpp"
 #include "lgh/testing/reservoir.hpp"
 #include "scene/demo_scene.hpp"
@@ -38,8 +43,12 @@ namespace {
 constexpr int kWidth = 64;
 constexpr int kHeight = 48;
 constexpr int kVpls = 4000;
+constexpr int kQualityVpls = 20000;          // 5 levels: the clamp h_1 is an eighth of the room
 constexpr double kMaxPathDifference = 2e-3;  // relative RMSE, raster vs compute
 constexpr double kMinPValue = 1e-3;
+// Light leakage keeps the hierarchy brighter than the brute force (docs/GI.md, "Metrics").
+constexpr double kMaxBiasAlpha2 = 0.06;
+constexpr double kMaxBiasAlpha4 = 0.03;
 
 struct Frame {
   lgh::FrameReport result;
@@ -54,6 +63,8 @@ struct Options {
   bool locked = false;
   bool sampleS1 = false;
   int vpls = kVpls;
+  int frame = 0;
+  float jitter = 0.0F;
 };
 
 // The demo scene less the row of model spheres: their meshes come last, named <model>_sphere.
@@ -92,8 +103,9 @@ class LghLighting : public ::testing::Test {
         R"({{"output": {{"width": {}, "height": {}}},
             "settings": {{"lgh": {{"enabled": true, "vpl_count": {}, "seed": 7, "alpha": {},
               "path": "{}", "interleave": "{}", "shadow_samples": {}, "locked_reservoir": {},
-              "sample_s1": {}}}}}}})",
-        kWidth, kHeight, o.vpls, o.alpha, o.path, o.interleave, o.samples, o.locked, o.sampleS1));
+              "sample_s1": {}, "frame": {}, "shadow_jitter": {}}}}}}})",
+        kWidth, kHeight, o.vpls, o.alpha, o.path, o.interleave, o.samples, o.locked, o.sampleS1,
+        o.frame, o.jitter));
   }
 
   static Frame render(const Options& options, bool bruteForce = false, bool overdraw = false) {
@@ -200,21 +212,93 @@ TEST_F(LghLighting, RoomIsTheDemoLessItsModelRow) {
   EXPECT_EQ(room->scene.instances.size() + 6, lgh::makeDemoScene().instances.size());
 }
 
-TEST_F(LghLighting, ErrorAgainstBruteForceFallsAsAlphaGrows) {
-  double previous = 1e30;
+// The independent check of the LGH (docs/GI.md, "Metrics"): the glossy metal sphere (3% of the
+// pixels) holds most of the squared error, and the diffuse surfaces are a little too bright from
+// light leakage (grid lights merge VPLs of neighbouring surfaces into centres off those
+// surfaces). So the error is bounded per material class, and the bias is measured, not the
+// headline relative RMSE alone.
+TEST_F(LghLighting, HierarchyErrorPerMaterialClassFallsAsAlphaGrows) {
+  double previousDiffuse = 1e30;
+  double previousBias = 1e30;
   for (float alpha : {1.0F, 2.0F, 4.0F}) {
     Options options;
     options.alpha = alpha;
+    options.vpls = kQualityVpls;
     const Frame frame = render(options, true);
-    const auto error = lgh::compareToReference(frame.probe.indirect, frame.probe.reference);
-    std::cout << fmt::format("[ lgh ] alpha {}: relative RMSE {:.4f}, PSNR {:.2f} dB ({} levels)\n",
-                             alpha, error.relativeRmse, error.psnr, frame.probe.levels.levelCount);
-    EXPECT_LT(error.relativeRmse, previous) << "alpha " << alpha;
-    EXPECT_LT(error.relativeRmse, 0.5) << "alpha " << alpha;
-    previous = error.relativeRmse;
+    const lgh::MaterialErrors error = lgh::compareByMaterial(
+        frame.probe.indirect, frame.probe.reference, frame.probe.metallicRoughness);
+    std::cout << fmt::format(
+        "[ lgh ] alpha {}: relative RMSE {:.4f} (diffuse {:.4f}, glossy {:.4f} on {:.1f}% of "
+        "pixels), bias {:+.4f} (diffuse {:+.4f}), {} levels\n",
+        alpha, error.all.relativeRmse, error.diffuse.relativeRmse, error.glossy.relativeRmse,
+        100.0 * error.glossyFraction, error.bias, error.diffuseBias, frame.probe.levels.levelCount);
+    EXPECT_LT(error.diffuse.relativeRmse, previousDiffuse) << "alpha " << alpha;
+    EXPECT_LT(std::fabs(error.bias), previousBias) << "alpha " << alpha;
+    EXPECT_GT(error.glossyFraction, 0.01) << "the demo's metal sphere is in view";
+    if (alpha == 2.0F) {
+      EXPECT_LT(error.diffuse.relativeRmse, 0.08);
+      EXPECT_LT(std::fabs(error.bias), kMaxBiasAlpha2);
+    }
+    if (alpha == 4.0F) {
+      EXPECT_LT(error.diffuse.relativeRmse, 0.04);
+      EXPECT_LT(std::fabs(error.bias), kMaxBiasAlpha4);
+    }
+    previousDiffuse = error.diffuse.relativeRmse;
+    previousBias = std::fabs(error.bias);
     if (alpha == 1.0F) save(frame.probe.reference, "lgh_bruteforce");
     save(frame.probe.indirect, fmt::format("lgh_alpha{}", alpha));
   }
+}
+
+// The brute force (every VPL at every pixel, the shading function the LGH's paths share) against
+// the CPU reference, in double precision, at every fourth covered pixel, from the G-buffer and the
+// VPLs the GPU used. A clamp of its own (0.05) so that the CPU knows it without the level table.
+TEST_F(LghLighting, BruteForceMatchesAnIndependentCpuReference) {
+  constexpr float kClamp = 0.05F;
+  Options options;
+  options.vpls = 600;
+  Frame frame;
+  frame.probe.bruteForce = true;
+  frame.probe.readGBuffer = true;
+  frame.probe.readVpls = true;
+  frame.probe.referenceClamp = lgh::LghFrameProbe::ReferenceClamp::Fixed;
+  frame.probe.referenceMinDistance = kClamp;
+  const lgh::RenderRequest req = request(options);
+  lgh::gl::GpuTimer timer;
+  pipeline->render(req, *room, timer, frame.result, &frame.probe);
+  const auto& g = frame.probe.gbuffer;
+  ASSERT_EQ(frame.probe.vpls.size(), 600U);
+  double worst = 0.0;
+  double sum = 0.0;
+  int compared = 0;
+  for (std::size_t p = 0; p < g.position.size(); p += 4) {
+    if (g.position[p].w < 0.5F) continue;
+    lgh::CpuSurface surface;
+    surface.position = glm::dvec3(glm::vec3(g.position[p]));
+    surface.normal = glm::normalize(glm::dvec3(g.normal[p]));
+    surface.baseColor = glm::dvec3(g.baseColor[p]);
+    surface.metallic = frame.probe.metallicRoughness[p].x;
+    surface.roughness = frame.probe.metallicRoughness[p].y;
+    const glm::dvec3 cpu = lgh::cpuPointLightRadiance(surface, glm::dvec3(g.cameraPosition),
+                                                      frame.probe.vpls, double{kClamp} * kClamp);
+    const float* gpu = &frame.probe.reference.rgba[p * 4];
+    for (int c = 0; c < 3; ++c) {
+      const double difference = std::fabs(gpu[c] - cpu[c]) / std::max(cpu[c], 1e-3);
+      worst = std::max(worst, difference);
+      sum += difference;
+    }
+    ++compared;
+  }
+  std::cout << fmt::format(
+      "[ lgh ] brute force vs CPU reference over {} pixels: relative "
+      "difference mean {:.2e}, max {:.2e}\n",
+      compared, sum / (3.0 * compared), worst);
+  // llvmpipe decodes the sRGB base colour with an approximation good to about 1e-3 (relative;
+  // white 0.7991 reads 0.7981): differences of that size come from the texture unit. A shading
+  // error shows far above it (a dielectric F0 of 0.08 instead of 0.04: 4% on every wall).
+  ASSERT_GT(compared, 500);
+  EXPECT_LT(sum / (3.0 * compared), 3e-3);
+  EXPECT_LT(worst, 1e-2);
 }
 
 TEST_F(LghLighting, InterleavedErrorIsBounded) {
@@ -336,6 +420,24 @@ TEST_F(LghLighting, ShadowSamplesAreValidAndSkipS1ByDefault) {
   }
   EXPECT_GT(sampledPixels, skip.probe.reservoirSums.size() / 2);
   EXPECT_GT(moreWithS1, sampledPixels / 2) << "sampling S1 should add to F";
+}
+
+// Frames that are averaged need their own shadow samples: settings.lgh.frame gives each frame its
+// own sequence (frame 0 is the seed's own), while the lighting itself does not change. The build's
+// float atomics (llvmpipe has them) sum in a different order each run, so two runs differ by float
+// rounding (about 3e-5 relative here) and a reservoir choice on a tie may flip: the bounds allow
+// that and nothing more.
+TEST_F(LghLighting, EachFrameIndexHasItsOwnShadowSamples) {
+  Options options;
+  options.jitter = 1.0F;  // the jitter draws from the sequence too
+  const Frame first = render(options);
+  const Frame again = render(options);
+  options.frame = 1;
+  const Frame next = render(options);
+  EXPECT_GE(identicalSampleFraction(first, again), 0.99);
+  EXPECT_LT(identicalSampleFraction(first, next), 0.5) << "frame 1 draws other samples";
+  EXPECT_LT(lgh::compareToReference(next.probe.indirect, first.probe.indirect).relativeRmse, 1e-4)
+      << "the lighting does not depend on the frame";
 }
 
 TEST_F(LghLighting, RecordsTimingsAndPaths) {

@@ -39,6 +39,16 @@ TEST_F(GoldenRender, DemoScene) {
   EXPECT_EQ(lgh::test::checkGolden(image, "demo_160x120", kMaxMeanError, kMaxFraction), "");
 }
 
+// Global illumination (docs/GI.md): the demo with one bounce of light-traced VPLs through the LGH,
+// shadowed (direct light and the LGH's sampled, filtered shadows).
+TEST_F(GoldenRender, DemoSceneWithOneBounce) {
+  auto image = render(R"({"output": {"width": 160, "height": 120},
+                         "settings": {"shadows": "on",
+                                      "gi": {"enabled": true, "bounces": 1, "vpl_count": 20000}}})");
+  EXPECT_EQ(lgh::test::checkGolden(image, "demo_gi_1bounce_160x120", kMaxMeanError, kMaxFraction),
+            "");
+}
+
 TEST_F(GoldenRender, DemoSceneLookAt) {
   auto image = render(R"({"camera": {"type": "look_at", "position": [0, 1, 3.4],
                          "target": [0, 0.9, 0], "yfov": 50},

@@ -49,6 +49,7 @@ json describe(const RenderRequest& request) {
   return {
       {"scene",
        {{"kind", static_cast<int>(request.scene.kind)},
+        {"builtin", static_cast<int>(request.scene.builtin)},
         {"asset", request.scene.assetPath},
         {"glb", request.scene.glbBytes},
         {"name", request.scene.displayName}}},
@@ -88,7 +89,14 @@ json describe(const RenderRequest& request) {
           {"path", static_cast<int>(lgh.path)},
           {"shadow_samples", lgh.shadowSamples},
           {"sample_s1", lgh.sampleS1},
-          {"locked_reservoir", lgh.lockedReservoir}}}}},
+          {"locked_reservoir", lgh.lockedReservoir},
+          {"frame", lgh.frame},
+          {"shadow_jitter", lgh.shadowJitter}}},
+        {"gi",
+         {{"enabled", request.settings.gi.enabled},
+          {"bounces", request.settings.gi.bounces},
+          {"vpl_count", request.settings.gi.vplCount},
+          {"seed", request.settings.gi.seed}}}}},
   };
 }
 
@@ -343,7 +351,7 @@ TEST(RequestErrors, UnknownPropertyListsTheAllowedOnes) {
 TEST(RequestErrors, SceneWithTwoKeysSaysWhichAreAllowed) {
   const Error error = parseError(std::string(R"({"scene": {"demo": true, "asset": "a.glb"}})"));
   EXPECT_EQ(error.message(),
-            "must have exactly one of the properties asset, demo or glb_base64, got 2");
+            "must have exactly one of the properties asset, builtin, demo or glb_base64, got 2");
 }
 
 TEST(RequestErrors, NonFiniteNumbersInJsonBuiltInCode) {
@@ -548,7 +556,8 @@ TEST(RequestParse, EnumSpellings) {
 
 TEST(RequestParse, SceneSources) {
   RenderRequest request = parseText(R"({"scene": {"demo": true}})");
-  EXPECT_EQ(request.scene.kind, SceneSource::Kind::Demo);
+  EXPECT_EQ(request.scene.kind, SceneSource::Kind::Builtin);
+  EXPECT_EQ(request.scene.builtin, BuiltinScene::Demo);
 
   // "glTF" + version 2 + length 12: a GLB header.
   request = parseText(R"({"scene": {"glb_base64": "Z2xURgIAAAAMAAAA"}})");
@@ -598,6 +607,12 @@ TEST(RequestParse, SchemaDefaultsMatchStructDefaults) {
       lgh.at("properties"),
       [](json o) {
         return json{{"settings", {{"lgh", o}}}};
+      },
+      defaults);
+  expectDefaults(
+      definitions.at("render-settings.schema.json").at("$defs").at("gi").at("properties"),
+      [](json o) {
+        return json{{"settings", {{"gi", o}}}};
       },
       defaults);
 
@@ -962,6 +977,44 @@ TEST(EnumNames, AgreeWithTheSchemas) {
   EXPECT_EQ(schemaEnum("material-parameters.schema.json", "wrap_t"), tableNames<WrapMode>());
   EXPECT_EQ(schemaEnum("material-parameters.schema.json", "filter"), tableNames<TextureFilter>());
   EXPECT_EQ(schemaEnum("material-parameters.schema.json", "mipmaps"), tableNames<MipmapMode>());
+  EXPECT_EQ(schemaEnum("scene.schema.json", "builtin"), tableNames<BuiltinScene>());
+}
+
+// --- Global illumination and built-in scenes (docs/GI.md) ---------------------------------------
+
+TEST(RequestParse, GiSettingsAndBuiltinScenes) {
+  const RenderRequest request = parseRenderRequest(
+      R"({"scene": {"builtin": "atrium"},
+          "settings": {"gi": {"enabled": true, "bounces": 2, "vpl_count": 5000, "seed": 9},
+                       "lgh": {"alpha": 2, "frame": 3, "shadow_jitter": 0.5}}})");
+  EXPECT_EQ(request.scene.kind, SceneSource::Kind::Builtin);
+  EXPECT_EQ(request.scene.builtin, BuiltinScene::Atrium);
+  EXPECT_TRUE(request.settings.gi.enabled);
+  EXPECT_TRUE(request.settings.lgh.enabled) << "GI lights the frame through the LGH";
+  EXPECT_EQ(request.settings.gi.bounces, 2);
+  EXPECT_EQ(request.settings.gi.vplCount, 5000);
+  EXPECT_EQ(request.settings.gi.seed, 9U);
+  EXPECT_EQ(request.settings.lgh.frame, 3U);
+  EXPECT_FLOAT_EQ(request.settings.lgh.shadowJitter, 0.5F);
+  EXPECT_EQ(parseRenderRequest(R"({"scene": {"builtin": "demo"}})").scene.builtin,
+            BuiltinScene::Demo);
+}
+
+TEST(RequestErrors, GiFieldsAreChecked) {
+  const auto code = [](const std::string& text) { return parseError(text); };
+  EXPECT_EQ(code(R"({"settings": {"gi": {"bounces": 4}}})").field(), "/settings/gi/bounces");
+  EXPECT_EQ(code(R"({"settings": {"gi": {"bounces": 4}}})").code(), kInvalid);
+  EXPECT_EQ(code(R"({"settings": {"gi": {"vpl_count": 0}}})").field(), "/settings/gi/vpl_count");
+  EXPECT_EQ(code(R"({"settings": {"gi": {"sun": 1}}})").field(), "/settings/gi/sun");
+  EXPECT_EQ(code(R"({"scene": {"builtin": "nave"}})").field(), "/scene/builtin");
+  EXPECT_EQ(code(R"({"settings": {"lgh": {"shadow_jitter": 2}}})").field(),
+            "/settings/lgh/shadow_jitter");
+  RequestLimits limits;
+  limits.maxVpls = 1000;
+  const Error tooMany = parseError(
+      std::string(R"({"settings": {"gi": {"enabled": true, "vpl_count": 1001}}})"), limits);
+  EXPECT_EQ(tooMany.code(), ErrorCode::TooLarge);
+  EXPECT_EQ(tooMany.field(), "/settings/gi/vpl_count");
 }
 
 TEST(EnumNames, RoundTripAndAliases) {

@@ -84,39 +84,6 @@ RenderRequest benchmarkRequest(const RenderBenchmarkOptions& o, const RunConfig&
   return request;
 }
 
-// Overdraw over the covered pixels, with power-of-two histogram bins (Fig. 5 is a log heat map).
-OverdrawStats overdrawStats(const std::vector<std::uint32_t>& counts, const FloatImage& coverage) {
-  std::vector<std::uint32_t> covered;
-  for (int y = 0; y < coverage.height; ++y) {
-    for (int x = 0; x < coverage.width; ++x) {
-      // Counts are in GL order (row 0 at the bottom), images top row first.
-      if (coverage.pixel(x, coverage.height - 1 - y)[3] <= 0.0F) continue;
-      covered.push_back(counts[static_cast<std::size_t>(y) * coverage.width + x]);
-    }
-  }
-  OverdrawStats stats;
-  if (covered.empty()) return stats;
-  std::sort(covered.begin(), covered.end());
-  double sum = 0.0;
-  for (std::uint32_t c : covered) sum += c;
-  auto quantile = [&](double q) {
-    return covered[std::min(covered.size() - 1, static_cast<std::size_t>(q * covered.size()))];
-  };
-  std::uint64_t from = 0;
-  for (std::uint64_t to = 1; from <= covered.back(); to *= 2) {
-    const auto first = std::lower_bound(covered.begin(), covered.end(), from);
-    const auto last = std::lower_bound(covered.begin(), covered.end(), to);
-    stats.histogram.push_back({from, to, static_cast<std::size_t>(last - first)});
-    from = to;
-  }
-  stats.pixels = covered.size();
-  stats.mean = sum / static_cast<double>(covered.size());
-  stats.max = covered.back();
-  stats.p50 = quantile(0.5);
-  stats.p95 = quantile(0.95);
-  return stats;
-}
-
 class BenchmarkSession {
  public:
   explicit BenchmarkSession(const RenderBenchmarkOptions& options)
@@ -205,6 +172,39 @@ class BenchmarkSession {
 };
 
 }  // namespace
+
+// Power-of-two histogram bins: Fig. 5 is a log heat map.
+OverdrawStats overdrawStats(const std::vector<std::uint32_t>& counts, const FloatImage& coverage) {
+  std::vector<std::uint32_t> covered;
+  for (int y = 0; y < coverage.height; ++y) {
+    for (int x = 0; x < coverage.width; ++x) {
+      // Counts are in GL order (row 0 at the bottom), images top row first.
+      if (coverage.pixel(x, coverage.height - 1 - y)[3] <= 0.0F) continue;
+      covered.push_back(counts[static_cast<std::size_t>(y) * coverage.width + x]);
+    }
+  }
+  OverdrawStats stats;
+  if (covered.empty()) return stats;
+  std::sort(covered.begin(), covered.end());
+  double sum = 0.0;
+  for (std::uint32_t c : covered) sum += c;
+  auto quantile = [&](double q) {
+    return covered[std::min(covered.size() - 1, static_cast<std::size_t>(q * covered.size()))];
+  };
+  std::uint64_t from = 0;
+  for (std::uint64_t to = 1; from <= covered.back(); to *= 2) {
+    const auto first = std::lower_bound(covered.begin(), covered.end(), from);
+    const auto last = std::lower_bound(covered.begin(), covered.end(), to);
+    stats.histogram.push_back({from, to, static_cast<std::size_t>(last - first)});
+    from = to;
+  }
+  stats.pixels = covered.size();
+  stats.mean = sum / static_cast<double>(covered.size());
+  stats.max = covered.back();
+  stats.p50 = quantile(0.5);
+  stats.p95 = quantile(0.95);
+  return stats;
+}
 
 RenderBenchmarkResult runRenderBenchmark(const RenderBenchmarkOptions& options) {
   checkOptions(options);

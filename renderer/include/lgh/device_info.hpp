@@ -18,6 +18,9 @@ struct DeviceInfo {
   int glMajor = 0;
   int glMinor = 0;
   bool softwareRenderer = false;
+  // A robust context (reset notification): a GPU reset fails the frame and the renderer is made
+  // again, instead of hanging.
+  bool robustContext = false;
   std::string imageBackend;  // "oiio" or "lean"
   nlohmann::json toJson() const;
 };

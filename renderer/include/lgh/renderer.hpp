@@ -10,6 +10,7 @@
 #include "lgh/render_result.hpp"
 #include "lgh/renderer_options.hpp"
 #include "lgh/request.hpp"
+#include "lgh/resource_stats.hpp"
 #include "lgh/scene_cache_stats.hpp"
 #include "lgh/shadow_info.hpp"
 
@@ -37,6 +38,14 @@ class Renderer {
 
   // The shadow side: its Vulkan device and paths, or why there is none.
   ShadowInfo shadowInfo() const;
+
+  // Live GL objects and GPU memory (queries the GL context: call it on the render thread).
+  ResourceStats resourceStats() const;
+
+  // False once the GL context was lost (a GPU reset reported through GL_KHR_robustness): every
+  // later render fails with Unavailable; make a new Renderer. The environment variable
+  // LGH_DEBUG_CONTEXT_LOSS_AFTER=N (a test hook) reports a loss after N frames.
+  bool healthy() const;
 
   struct Impl;
 

@@ -52,12 +52,24 @@ struct LightDesc {
   float angularRadius = 0.0F;
 };
 
+// The scenes built in code (renderer/src/scene/): the demo room, and the atrium the GI benchmark
+// runs on (docs/GI.md).
+enum class BuiltinScene { Demo, Atrium };
+template <>
+struct EnumNames<BuiltinScene> {
+  static constexpr std::array<EnumName<BuiltinScene>, 2> names{{
+      {"demo", BuiltinScene::Demo},
+      {"atrium", BuiltinScene::Atrium},
+  }};
+};
+
 // Where the scene comes from.
 struct SceneSource {
-  enum class Kind { Demo, AssetPath, InlineGlb, UploadedGltf };
-  Kind kind = Kind::Demo;
-  std::string assetPath;               // relative to the asset root (AssetPath)
-  std::vector<std::uint8_t> glbBytes;  // decoded base64 or an uploaded .glb (InlineGlb)
+  enum class Kind { Builtin, AssetPath, InlineGlb, UploadedGltf };
+  Kind kind = Kind::Builtin;
+  BuiltinScene builtin = BuiltinScene::Demo;  // Builtin
+  std::string assetPath;                      // relative to the asset root (AssetPath)
+  std::vector<std::uint8_t> glbBytes;         // decoded base64 or an uploaded .glb (InlineGlb)
   // An uploaded .gltf (UploadedGltf): its file name and every uploaded file by name, side files
   // (buffers, images) included. Its URIs resolve only among these files.
   std::string gltfFileName;
@@ -182,8 +194,23 @@ struct LghSettings {
   InterleaveMode interleave = InterleaveMode::None;
   LightingPath path = LightingPath::Auto;
   int shadowSamples = 4;  // k, 1..8
+  // Jitter of the shadow samples' positions, 0..1 of the paper's (a box with the grid light's
+  // positional variance), folded to the receiver's side; 0: rays to the illumination centres.
+  float shadowJitter = 0.0F;
   bool sampleS1 = false;  // include S1 grid lights in shadow sampling
   bool lockedReservoir = false;
+  // Index of a frame in an accumulated sequence: mixed into the shadow samples' random numbers so
+  // that averaged frames carry independent noise (0: the seed's own sequence).
+  std::uint32_t frame = 0;
+};
+
+// Global illumination (docs/GI.md): VPLs left by light paths traced from the frame's lights and
+// the scene's emissive triangles, one at each diffuse hit, lighting the frame through the LGH.
+struct GiSettings {
+  bool enabled = false;
+  int bounces = 3;        // diffuse bounces of a light path (1..3), a VPL at each
+  int vplCount = 100000;  // VPL slots: paths x (bounces, + 1 where emissive triangles emit)
+  std::uint32_t seed = 1;
 };
 
 // Shadows by ray tracing on the Vulkan side (docs/SHADOWS.md).
@@ -250,6 +277,7 @@ struct RenderSettings {
   PrimitiveSettings primitives;
   ShadowSettings shadows;
   LghSettings lgh;
+  GiSettings gi;  // enabled: the LGH's VPLs come from light paths (lgh.enabled is set too)
 };
 
 struct RenderRequest {

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "context/container_hints.hpp"
 #include "context/gl_context.hpp"
 #include "lgh/error.hpp"
 
@@ -119,7 +120,7 @@ class EglContext final : public GlContext {
     initialized_ = true;
     if (gladLoaderLoadEGL(display_) == 0) failEgl("loading EGL functions for the display");
     if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) failEgl("eglBindAPI(EGL_OPENGL_API)");
-    createContext(options.glDebug);
+    createContext(options.glDebug, major > 1 || (major == 1 && minor >= 5));
     bindPlatform();
     loadGl(eglProcAddress, nullptr);
   }
@@ -149,24 +150,62 @@ class EglContext final : public GlContext {
   }
 
  private:
-  void createContext(bool debug) {
+  // The ways to ask for a robust context with reset notification, best first: EGL 1.5's core
+  // attributes (NVIDIA's EGL accepts only these for desktop GL), then EGL_EXT_create_context_
+  // robustness's (Mesa), then none (not every driver offers one).
+  struct Robustness {
+    const char* name;
+    std::vector<EGLint> attributes;
+  };
+  static std::vector<Robustness> robustnessVariants(bool egl15, const char* extensions) {
+    std::vector<Robustness> variants;
+    if (egl15) {
+      variants.push_back(
+          {"EGL 1.5 robust access",
+           {EGL_CONTEXT_OPENGL_ROBUST_ACCESS, EGL_TRUE,
+            EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY, EGL_LOSE_CONTEXT_ON_RESET}});
+    }
+    if (hasExtension(extensions, "EGL_EXT_create_context_robustness")) {
+      variants.push_back(
+          {"EGL_EXT_create_context_robustness",
+           {EGL_CONTEXT_OPENGL_ROBUST_ACCESS_EXT, EGL_TRUE,
+            EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY_EXT, EGL_LOSE_CONTEXT_ON_RESET_EXT}});
+    }
+    variants.push_back({"", {}});
+    return variants;
+  }
+
+  void createContext(bool debug, bool egl15) {
     const char* extensions = eglQueryString(display_, EGL_EXTENSIONS);
     if (!hasExtension(extensions, "EGL_KHR_surfaceless_context")) {
       throw Error(ErrorCode::Unavailable, "EGL display lacks EGL_KHR_surfaceless_context");
     }
     EGLConfig config = chooseConfig(extensions);
+    // A robust context (GL_KHR_robustness) reports a GPU reset instead of hanging on it: the
+    // renderer then fails the frame and is made again.
+    const std::vector<Robustness> variants = robustnessVariants(egl15, extensions);
     // Ask for 4.6 core; Mesa's llvmpipe stops at 4.5, which has everything we use.
     for (int minor : {6, 5}) {
-      std::vector<EGLint> attributes{
-          EGL_CONTEXT_MAJOR_VERSION,       4,
-          EGL_CONTEXT_MINOR_VERSION,       minor,
-          EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
-      if (debug) attributes.insert(attributes.end(), {EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE});
-      attributes.push_back(EGL_NONE);
-      context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, attributes.data());
-      if (context_ != EGL_NO_CONTEXT) return;
-      spdlog::info("no OpenGL 4.{} core context on {} ({}); trying lower", minor, info_.contextPath,
-                   eglErrorName(eglGetError()));
+      for (const Robustness& robustness : variants) {
+        std::vector<EGLint> attributes{
+            EGL_CONTEXT_MAJOR_VERSION,       4,
+            EGL_CONTEXT_MINOR_VERSION,       minor,
+            EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
+        if (debug) attributes.insert(attributes.end(), {EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE});
+        attributes.insert(attributes.end(), robustness.attributes.begin(),
+                          robustness.attributes.end());
+        attributes.push_back(EGL_NONE);
+        context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, attributes.data());
+        const bool robust = !robustness.attributes.empty();
+        if (context_ != EGL_NO_CONTEXT) {
+          info_.robustContext = robust;
+          if (robust) spdlog::info("robust GL context ({})", robustness.name);
+          return;
+        }
+        spdlog::info("no OpenGL 4.{} core context{} on {} ({})", minor,
+                     robust ? fmt::format(" with {}", robustness.name) : "", info_.contextPath,
+                     eglErrorName(eglGetError()));
+      }
     }
     throw Error(ErrorCode::Unavailable,
                 fmt::format("no OpenGL 4.5+ core context on {}", info_.contextPath));
@@ -196,12 +235,13 @@ std::vector<EGLDeviceEXT> queryEglDevices() {
                            hasExtension(clientExtensions, "EGL_EXT_device_base");
   if (!hasExtension(clientExtensions, "EGL_EXT_platform_device") || !enumeration ||
       eglQueryDevicesEXT == nullptr) {
-    throw Error(ErrorCode::Unavailable,
-                fmt::format("EGL has no EGL_EXT_platform_device with EGL_EXT_device_enumeration "
-                            "or EGL_EXT_device_base (is the vendor's EGL ICD JSON installed? In "
-                            "containers, NVIDIA_DRIVER_CAPABILITIES must include 'graphics'); "
-                            "client extensions: {}",
-                            clientExtensions != nullptr ? clientExtensions : "none"));
+    throw Error(
+        ErrorCode::Unavailable,
+        fmt::format("EGL has no EGL_EXT_platform_device with EGL_EXT_device_enumeration "
+                    "or EGL_EXT_device_base (is the vendor's EGL ICD JSON installed? In "
+                    "containers, NVIDIA_DRIVER_CAPABILITIES must include 'graphics'); "
+                    "client extensions: {}{}",
+                    clientExtensions != nullptr ? clientExtensions : "none", eglDeviceHints()));
   }
   EGLint count = 0;
   if (eglQueryDevicesEXT(0, nullptr, &count) != EGL_TRUE) failEgl("eglQueryDevicesEXT");
@@ -233,8 +273,8 @@ std::unique_ptr<GlContext> createEglDeviceContext(const RendererOptions& options
   }
   if (options.gpuIndex < 0 || static_cast<size_t>(options.gpuIndex) >= devices.size()) {
     throw Error(ErrorCode::Unavailable,
-                fmt::format("GPU index {} out of range: EGL lists {} device(s)", options.gpuIndex,
-                            devices.size()));
+                fmt::format("GPU index {} out of range: EGL lists {} device(s){}", options.gpuIndex,
+                            devices.size(), eglDeviceHints()));
   }
   EGLDeviceEXT device = devices[static_cast<size_t>(options.gpuIndex)];
   EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device, nullptr);

@@ -58,19 +58,26 @@ const Library& library() {
 
 Context::Context(int major, int minor) {
   const Library& lib = library();
-  const int attributes[] = {OSMESA_FORMAT,        OSMESA_RGBA,
-                            OSMESA_DEPTH_BITS,    0,
-                            OSMESA_STENCIL_BITS,  0,
-                            OSMESA_ACCUM_BITS,    0,
-                            OSMESA_PROFILE,       OSMESA_CORE_PROFILE,
-                            OSMESA_CONTEXT_MAJOR_VERSION, major,
-                            OSMESA_CONTEXT_MINOR_VERSION, minor,
+  const int attributes[] = {OSMESA_FORMAT,
+                            OSMESA_RGBA,
+                            OSMESA_DEPTH_BITS,
+                            0,
+                            OSMESA_STENCIL_BITS,
+                            0,
+                            OSMESA_ACCUM_BITS,
+                            0,
+                            OSMESA_PROFILE,
+                            OSMESA_CORE_PROFILE,
+                            OSMESA_CONTEXT_MAJOR_VERSION,
+                            major,
+                            OSMESA_CONTEXT_MINOR_VERSION,
+                            minor,
                             0};
   context_ = lib.createContextAttribs(attributes, nullptr);
   if (context_ == nullptr) {
-    throw Error(ErrorCode::Unavailable,
-                fmt::format("OSMesaCreateContextAttribs gave no OpenGL {}.{} core context", major,
-                            minor));
+    throw Error(
+        ErrorCode::Unavailable,
+        fmt::format("OSMesaCreateContextAttribs gave no OpenGL {}.{} core context", major, minor));
   }
 }
 

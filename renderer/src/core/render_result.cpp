@@ -1,4 +1,5 @@
 #include "lgh/render_result.hpp"
+#include "lgh/resource_stats.hpp"
 #include "lgh/shadow_info.hpp"
 
 #include <nlohmann/json.hpp>
@@ -10,7 +11,16 @@ nlohmann::json DeviceInfo::toJson() const {
           {"egl_device_count", eglDeviceCount}, {"gl_vendor", glVendor},
           {"gl_renderer", glRenderer},          {"gl_version", glVersion},
           {"glsl_version", glslVersion},        {"software_renderer", softwareRenderer},
-          {"image_backend", imageBackend}};
+          {"robust_context", robustContext},    {"image_backend", imageBackend}};
+}
+
+nlohmann::json ResourceStats::toJson() const {
+  nlohmann::json json = {{"gl_objects", glObjects}, {"scene_cache_bytes", sceneCacheBytes}};
+  json["gpu_memory_total_kib"] =
+      gpuMemoryTotalKiB >= 0 ? nlohmann::json(gpuMemoryTotalKiB) : nlohmann::json();
+  json["gpu_memory_available_kib"] =
+      gpuMemoryAvailableKiB >= 0 ? nlohmann::json(gpuMemoryAvailableKiB) : nlohmann::json();
+  return json;
 }
 
 nlohmann::json ShadowInfo::toJson() const {

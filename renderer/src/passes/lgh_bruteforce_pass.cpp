@@ -18,7 +18,7 @@ constexpr int kRaysPerChunk = 64;  // vk::kMaxRaysPerPixel
 
 void LghBruteForcePass::run(GLuint pointLights, int count, GLuint levels,
                             const CameraMatrices& camera, const FrameTargets& frame,
-                            const PointLightVisibility& visibility) {
+                            const PointLightVisibility& visibility, float minDistance) {
   if (frame.width != width_ || frame.height != height_) {
     output_ = gl::Texture(GL_TEXTURE_2D);
     glTextureStorage2D(output_.id(), 1, GL_RGBA32F, frame.width, frame.height);
@@ -29,6 +29,7 @@ void LghBruteForcePass::run(GLuint pointLights, int count, GLuint levels,
   const GLuint program = program_.get(defines, [](const std::string& text) {
     return gl::buildComputeProgram("lgh_bruteforce.comp", text);
   });
+  setUniform(program, "uMinDistance2", minDistance < 0.0F ? -1.0F : minDistance * minDistance);
   if (!visibility) {
     setUniform(program, "uLightCount", static_cast<GLuint>(count));
     dispatch(program, pointLights, levels, camera, frame);

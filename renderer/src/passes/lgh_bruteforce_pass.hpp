@@ -1,6 +1,7 @@
 // Brute-force reference of the many-light lighting, for tests and the benchmark.
-//   inputs:  the input point lights (PointLight SSBO), the level table (h_1 of the singularity
-//            clamp), FrameTargets::gbuffer, camera; shadowed: a tracer of rays to the lights
+//   inputs:  the input point lights (PointLight SSBO), the level table (h_1 of the hierarchy's
+//            singularity clamp) or a clamp of its own, FrameTargets::gbuffer, camera; shadowed: a
+//            tracer of rays to the lights
 //   outputs: its own RGBA32F image of the frame: every light evaluated at every pixel with the
 //            hierarchy's shading code, unshadowed or times the visibility of one ray per light
 //            and pixel (ground truth for the shadowed frame); alpha = coverage
@@ -25,8 +26,10 @@ using PointLightVisibility = std::function<GLuint(GLuint pointLights, int first,
 class LghBruteForcePass {
  public:
   // `visibility`: shadowed with its rays (in chunks of 64 lights), unshadowed when empty.
+  // `minDistance`: the clamp's d_min in world units (0: none); < 0: the hierarchy's, h_1.
   void run(GLuint pointLights, int count, GLuint levels, const CameraMatrices& camera,
-           const FrameTargets& frame, const PointLightVisibility& visibility = {});
+           const FrameTargets& frame, const PointLightVisibility& visibility = {},
+           float minDistance = -1.0F);
   // The last run's image (waits for the GPU).
   FloatImage read() const;
 

@@ -53,6 +53,7 @@ float LghFrameLighting::vplTotalIntensity(const Scene& scene, float vplIntensity
 }
 
 void LghFrameLighting::uploadVpls(const LghSettings& settings, const CachedScene& cached) {
+  vplCount_ = settings.vplCount;
   const VplKey key{
       &cached,           cached.scene.name, cached.scene.triangleCount(),
       settings.vplCount, settings.seed,     vplTotalIntensity(cached.scene, settings.vplIntensity)};
@@ -63,23 +64,46 @@ void LghFrameLighting::uploadVpls(const LghSettings& settings, const CachedScene
   vplKey_ = key;
 }
 
+void LghFrameLighting::traceVpls(const LghGiInputs& gi, const CachedScene& cached,
+                                 gl::GpuTimer& timer, FrameReport& report) {
+  if (!vplTracer_) vplTracer_ = std::make_unique<VplTracer>();
+  vplKey_.reset();  // the buffer no longer holds the surface VPLs
+  giTracing_ = &gi.tracer;
+  vplLayout_ =
+      vplTracer_->generate({gi.settings, gi.lights, gi.lightBuffer, gi.tracing, gi.materials},
+                           cached, gi.tracer, vplBuffer_, timer, report);
+  vplCount_ = vplLayout_.count;
+}
+
+void LghFrameLighting::collectTimings(TimingTable& table) {
+  if (vplTracer_ && giTracing_ != nullptr) vplTracer_->collectTimings(*giTracing_, table);
+  giTracing_ = nullptr;
+}
+
 void LghFrameLighting::run(const LghSettings& settings, const CachedScene& cached,
                            const CameraMatrices& camera, FrameTargets& frame, gl::GpuTimer& timer,
-                           FrameReport& report, LghFrameProbe* probe) {
+                           FrameReport& report, LghFrameProbe* probe, const LghGiInputs* gi) {
   sampled_ = false;
-  report.decide("vpls", std::to_string(settings.vplCount));
+  giTracing_ = nullptr;
+  vplLayout_ = {};
+  const bool lightPaths = gi != nullptr && gi->settings.enabled;
+  report.decide("vpl_source", lightPaths ? "light-paths" : "surface");
+  report.decide("vpls", std::to_string(lightPaths ? gi->settings.vplCount : settings.vplCount));
   report.decide("interleave", std::string(enumName(settings.interleave)));
-  if (settings.vplCount <= 0) {
+  if (!lightPaths && settings.vplCount <= 0) {
     clearIndirect(frame);
     report.decide("lgh_lighting", "none");
     report.warn("LGH lighting enabled with vpl_count 0: no indirect light");
     return;
   }
-  uploadVpls(settings, cached);
+  if (lightPaths) {
+    traceVpls(*gi, cached, timer, report);
+  } else {
+    uploadVpls(settings, cached);
+  }
   {
     gl::ScopedGpuPass pass(timer, "lgh build");
-    builder_.build(vplBuffer_.id(), settings.vplCount, LghBuildSettings::fromRequest(settings),
-                   &timer);
+    builder_.build(vplBuffer_.id(), vplCount_, LghBuildSettings::fromRequest(settings), &timer);
   }
   LghLightingParams params = LghLightingParams::fromSettings(settings);
   params.overdraw = probe != nullptr && probe->overdraw;
@@ -97,8 +121,11 @@ void LghFrameLighting::run(const LghSettings& settings, const CachedScene& cache
   }
   if (probe != nullptr) {
     probe->path = path;
-    readProbe(settings, camera, frame, timer, *probe);
-    if (probe->bruteForce) report.decide("reference", "brute-force");
+    probe->vplLayout = vplLayout_;
+    readProbe(camera, frame, timer, *probe, cached, lightPaths ? gi : nullptr);
+    if (probe->bruteForce) {
+      report.decide("reference", probe->shadowedReference ? "brute-force-shadowed" : "brute-force");
+    }
   }
 }
 
@@ -175,11 +202,31 @@ void LghFrameLighting::light(LightingPath path, const LghLightingParams& params,
   }
 }
 
-void LghFrameLighting::readProbe(const LghSettings& settings, const CameraMatrices& camera,
-                                 FrameTargets& frame, gl::GpuTimer& timer, LghFrameProbe& probe) {
+void LghFrameLighting::readProbe(const CameraMatrices& camera, FrameTargets& frame,
+                                 gl::GpuTimer& timer, LghFrameProbe& probe,
+                                 const CachedScene& scene, const LghGiInputs* gi) {
+  if (probe.pathTracedSamples > 0 && gi != nullptr) {
+    if (!pathTracer_) pathTracer_ = std::make_unique<PathTracedReference>();
+    const PathTracingSettings settings{gi->settings.bounces, probe.pathTracedSamples,
+                                       gi->settings.seed, gi->tracing};
+    probe.pathTraced = pathTracer_->render(
+        settings, {scene, gi->lights, gi->lightBuffer, camera, frame, gi->materials}, gi->tracer);
+  }
   if (probe.bruteForce) {
     gl::ScopedGpuPass pass(timer, "lgh reference");
-    bruteForce_.run(vplBuffer_.id(), settings.vplCount, builder_.levels(), camera, frame);
+    const float minDistance = probe.referenceClamp == LghFrameProbe::ReferenceClamp::Hierarchy
+                                  ? -1.0F
+                                  : std::max(probe.referenceMinDistance, 0.0F);
+    bruteForce_.run(vplBuffer_.id(), vplCount_, builder_.levels(), camera, frame,
+                    probe.shadowedReference ? probe.visibility : PointLightVisibility{},
+                    minDistance);
+  }
+  if (probe.readVpls) {
+    probe.vpls.resize(static_cast<std::size_t>(vplCount_));
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(vplBuffer_.id(), 0,
+                            static_cast<GLsizeiptr>(probe.vpls.size() * sizeof(PointLight)),
+                            probe.vpls.data());
   }
   if (!probe.readBack) return;
   probe.indirect = readTextureImage(frame.indirect, frame.width, frame.height);

@@ -1,6 +1,8 @@
 // The many-light part of a frame (docs/ARCHITECTURE.md, "One frame", step 3), between the G-buffer
 // and the composite:
-//   inputs:  LghSettings, the scene (VPLs are sampled on its surfaces), camera, the G-buffer
+//   inputs:  LghSettings, the scene, camera, the G-buffer; the VPLs come from light paths
+//            (settings.gi, gi/vpl_tracer.hpp) or, as a benchmark mode, from random points on the
+//            scene's surfaces
 //   outputs: FrameTargets::indirect (unshadowed LGH lighting), the per-pixel shadow samples in
 //            LghLightingTargets, timing rows ("lgh build" and the builder's steps, "lgh lighting",
 //            "lgh interleave split", "lgh interleave composite") and the FrameReport's decisions
@@ -12,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,6 +22,8 @@
 #include <glm/glm.hpp>
 
 #include "frame_report.hpp"
+#include "gi/path_traced_reference.hpp"
+#include "gi/vpl_tracer.hpp"
 #include "gl/gpu_timer.hpp"
 #include "lightgrid/lgh_builder.hpp"
 #include "passes/lgh_bruteforce_pass.hpp"
@@ -35,9 +40,23 @@ struct LghFrameProbe {
   bool bruteForce = false;  // also render the brute-force reference of the same frame
   bool overdraw = false;    // count fragments (raster) / lights evaluated (compute) per pixel
   bool readBack = true;     // fill the outputs below (waits for the GPU)
+  bool readVpls = false;    // read the VPLs back into `vpls`
+  // The brute-force reference's own clamp of the VPL singularity, max(d^2, d_min^2):
+  //   Hierarchy  d_min = h_1, the LGH's (isolates the hierarchy's error from the clamp's);
+  //   Fixed      d_min = referenceMinDistance (world units; 0: no clamp at all).
+  enum class ReferenceClamp { Hierarchy, Fixed };
+  ReferenceClamp referenceClamp = ReferenceClamp::Hierarchy;
+  float referenceMinDistance = 0.0F;
+  // Shadowed reference: one ray per VPL and pixel (set by the frame when shadowedReference).
+  bool shadowedReference = false;
+  PointLightVisibility visibility;
+  // The path-traced reference (settings.gi frames only): samples per pixel, 0 for none.
+  int pathTracedSamples = 0;
+  bool readGBuffer = false;  // fill `gbuffer` (for CPU references)
 
-  FloatImage indirect;   // the LGH lighting, linear, top row first
-  FloatImage reference;  // the brute-force image (bruteForce)
+  FloatImage indirect;    // the LGH lighting, linear, top row first
+  FloatImage reference;   // the brute-force image (bruteForce)
+  FloatImage pathTraced;  // the path-traced reference (pathTracedSamples > 0)
   // Per pixel, GL order (row 0 at the bottom): F, k samples (position, weight), overdraw.
   std::vector<float> reservoirSums;
   std::vector<glm::vec4> shadowSamples;
@@ -45,6 +64,30 @@ struct LghFrameProbe {
   std::vector<std::uint32_t> overdrawCounts;
   LghLevelTable levels;
   LightingPath path = LightingPath::Auto;  // the path that ran
+  std::vector<PointLight> vpls;            // readVpls
+  VplLayout vplLayout;                     // how the light paths filled them (settings.gi)
+  // Filled by FramePipeline: the filtered LGH shadow ratio (1 where the frame has none) and the
+  // G-buffer's material (metallic, roughness) per pixel, top row first like the images.
+  FloatImage shadowRatio;
+  std::vector<glm::vec2> metallicRoughness;
+  // readGBuffer: what the lighting read per pixel, top row first.
+  struct GBuffer {
+    std::vector<glm::vec4> position;   // w: coverage
+    std::vector<glm::vec3> normal;     // as stored (fp16)
+    std::vector<glm::vec3> baseColor;  // linear (the sRGB target decoded)
+    glm::vec3 cameraPosition{0.0F};
+  } gbuffer;
+};
+
+// What a frame with settings.gi gives the LGH part: the settings, the frame's lights (the light
+// paths' sources) and where rays are traced.
+struct LghGiInputs {
+  const GiSettings& settings;
+  const std::vector<LightDesc>& lights;
+  GLuint lightBuffer = 0;
+  ShadowTracing tracing = ShadowTracing::Auto;
+  GiTracing& tracer;
+  const std::vector<Material>& materials;  // the frame's (MaterialTable): light paths' albedo
 };
 
 class LghFrameLighting {
@@ -56,7 +99,10 @@ class LghFrameLighting {
 
   void run(const LghSettings& settings, const CachedScene& scene, const CameraMatrices& camera,
            FrameTargets& frame, gl::GpuTimer& timer, FrameReport& report,
-           LghFrameProbe* probe = nullptr);
+           LghFrameProbe* probe = nullptr, const LghGiInputs* gi = nullptr);
+
+  // The rows of the last run that come after the GL timer (the light paths' Vulkan time).
+  void collectTimings(TimingTable& table);
 
   // The k shadow samples per pixel that the last run picked (vec4(position, weight) at
   // [pixel * k + s], GL row order), for the shadow rays; {0, 0} when it lit nothing.
@@ -82,18 +128,25 @@ class LghFrameLighting {
   };
 
   void uploadVpls(const LghSettings& settings, const CachedScene& scene);
+  void traceVpls(const LghGiInputs& gi, const CachedScene& scene, gl::GpuTimer& timer,
+                 FrameReport& report);
   LightingPath choosePath(LightingPath requested, const LghLightingParams& params,
                           const CameraMatrices& camera, FrameTargets& frame, FrameReport& report);
   LightingPath measureFasterPath(const LghLightingParams& params, const CameraMatrices& camera,
                                  FrameTargets& frame);
   void light(LightingPath path, const LghLightingParams& params, const CameraMatrices& camera,
              FrameTargets& frame, gl::GpuTimer& timer);
-  void readProbe(const LghSettings& settings, const CameraMatrices& camera, FrameTargets& frame,
-                 gl::GpuTimer& timer, LghFrameProbe& probe);
+  void readProbe(const CameraMatrices& camera, FrameTargets& frame, gl::GpuTimer& timer,
+                 LghFrameProbe& probe, const CachedScene& scene, const LghGiInputs* gi);
 
   LghBuilder builder_;
   gl::SizedBuffer vplBuffer_;
+  int vplCount_ = 0;  // this frame's VPLs (slots) in vplBuffer_
   std::optional<VplKey> vplKey_;
+  std::unique_ptr<VplTracer> vplTracer_;
+  std::unique_ptr<PathTracedReference> pathTracer_;
+  GiTracing* giTracing_ = nullptr;  // of the last frame with light paths
+  VplLayout vplLayout_;
   LghLightingTargets targets_;
   LghRasterLightingPass raster_;
   LghComputeLightingPass compute_;

@@ -59,14 +59,27 @@ std::size_t pixelCount(const LghLightingTargets& targets) {
   return static_cast<std::size_t>(targets.width) * static_cast<std::size_t>(targets.height);
 }
 
+// PCG hash (as glsl/include/reservoir.glsl).
+std::uint32_t pcgHash(std::uint32_t value) {
+  const std::uint32_t state = value * 747796405U + 2891336453U;
+  const std::uint32_t word = ((state >> ((state >> 28U) + 4U)) ^ state) * 277803737U;
+  return (word >> 22U) ^ word;
+}
+
 }  // namespace
+
+std::uint32_t samplingSeed(const LghSettings& settings) {
+  if (settings.frame == 0) return settings.seed;
+  return pcgHash(settings.seed ^ pcgHash(settings.frame + 0x9e3779b9U));
+}
 
 LghLightingParams LghLightingParams::fromSettings(const LghSettings& settings) {
   LghLightingParams params;
   params.alpha = settings.alpha;
   params.sampleStartLevel = settings.sampleS1 ? 1 : 2;
   params.samples = std::clamp(settings.shadowSamples, 1, 8);
-  params.seed = settings.seed;
+  params.seed = samplingSeed(settings);
+  params.shadowJitter = settings.shadowJitter;
   params.interleave = interleaveFactor(settings.interleave);
   params.locked = settings.lockedReservoir;
   return params;
@@ -155,6 +168,7 @@ void setLightingUniforms(GLuint program, const LghLightingParams& params,
   setUniform(program, "uSampleStartLevel", params.sampleStartLevel);
   setUniform(program, "uSampleCount", params.samples);
   setUniform(program, "uSeed", static_cast<GLuint>(params.seed));
+  setUniform(program, "uShadowJitter", params.shadowJitter);
   setUniform(program, "uInterleave", targets.interleave);
   auto set2i = [program](const char* name, int x, int y) {
     const GLint location = glGetUniformLocation(program, name);

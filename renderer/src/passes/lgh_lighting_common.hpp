@@ -26,7 +26,8 @@ struct LghLightingParams {
   int sampleStartLevel = 2;  // S1 skipped for shadow sampling unless sampleS1
   int samples = 4;           // k
   std::uint32_t seed = 1;
-  int interleave = 1;  // n: n x n tiles
+  float shadowJitter = 0.0F;  // settings.lgh.shadow_jitter
+  int interleave = 1;         // n: n x n tiles
   bool locked = false;
   bool overdraw = false;  // debug counter (slower: image atomics / stores per pixel)
 
@@ -34,6 +35,11 @@ struct LghLightingParams {
 };
 
 int interleaveFactor(InterleaveMode mode);
+
+// The seed of a frame's shadow-sample random numbers (the reservoir, its jitter, the direct
+// lights' soft-shadow jitter): settings.seed for frame 0, a hash of (seed, frame) for the others,
+// so that accumulated frames carry independent noise.
+std::uint32_t samplingSeed(const LghSettings& settings);
 
 // The hierarchy as LghBuilder leaves it on the GPU.
 struct LghHierarchyBuffers {

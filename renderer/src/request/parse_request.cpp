@@ -188,8 +188,10 @@ LghSettings readLgh(const json& object) {
   readEnum(object, "interleave", lgh.interleave);
   readEnum(object, "path", lgh.path);
   read(object, "shadow_samples", lgh.shadowSamples);
+  read(object, "shadow_jitter", lgh.shadowJitter);
   read(object, "sample_s1", lgh.sampleS1);
   read(object, "locked_reservoir", lgh.lockedReservoir);
+  read(object, "frame", lgh.frame);
   return lgh;
 }
 
@@ -199,6 +201,15 @@ PrimitiveSettings readPrimitives(const json& object) {
   readEnum(object, "point_shape", primitives.pointShape);
   read(object, "line_width", primitives.lineWidth);
   return primitives;
+}
+
+GiSettings readGi(const json& object) {
+  GiSettings gi;
+  read(object, "enabled", gi.enabled);
+  read(object, "bounces", gi.bounces);
+  read(object, "vpl_count", gi.vplCount);
+  read(object, "seed", gi.seed);
+  return gi;
 }
 
 RenderSettings readSettings(const json& object) {
@@ -214,6 +225,9 @@ RenderSettings readSettings(const json& object) {
   read(object, "shadow_light_samples", settings.shadows.lightSamples);
   read(object, "shadow_filter_iterations", settings.shadows.filterIterations);
   if (const auto lgh = object.find("lgh"); lgh != object.end()) settings.lgh = readLgh(*lgh);
+  if (const auto gi = object.find("gi"); gi != object.end()) settings.gi = readGi(*gi);
+  // GI lights the frame through the LGH (checkGiSettings refuses an explicit "enabled": false).
+  if (settings.gi.enabled) settings.lgh.enabled = true;
   return settings;
 }
 
@@ -281,6 +295,11 @@ void checkLimits(const RenderRequest& request, const RequestLimits& limits) {
     throwTooLarge("/settings/lgh/vpl_count",
                   fmt::format("must be at most {} on this server, got {}", limits.maxVpls,
                               request.settings.lgh.vplCount));
+  }
+  if (request.settings.gi.enabled && request.settings.gi.vplCount > limits.maxVpls) {
+    throwTooLarge("/settings/gi/vpl_count",
+                  fmt::format("must be at most {} on this server, got {}", limits.maxVpls,
+                              request.settings.gi.vplCount));
   }
 }
 
@@ -359,11 +378,32 @@ void checkCamera(const CameraDesc& camera) {
   }
 }
 
-void checkMeaning(const RenderRequest& request) {
+// With settings.gi the VPLs come from light paths: the random-surface VPLs of settings.lgh (a
+// benchmark mode) and an LGH switched off contradict it.
+void checkGiSettings(const json& request) {
+  const auto settings = request.find("settings");
+  if (settings == request.end()) return;
+  const auto gi = settings->find("gi");
+  if (gi == settings->end() || !gi->value("enabled", false)) return;
+  const auto lgh = settings->find("lgh");
+  if (lgh == settings->end()) return;
+  if (lgh->contains("vpl_count")) {
+    throwInvalid("/settings/lgh/vpl_count",
+                 "random surface VPLs cannot be combined with settings.gi, whose VPLs come from "
+                 "light paths: leave vpl_count out (settings.gi.vpl_count sets their number)");
+  }
+  if (!lgh->value("enabled", true)) {
+    throwInvalid("/settings/lgh/enabled",
+                 "settings.gi lights the frame through the LGH: it cannot be switched off");
+  }
+}
+
+void checkMeaning(const RenderRequest& request, const json& document) {
   for (std::size_t i = 0; i < request.lights.size(); ++i) {
     checkLight(request.lights[i], fmt::format("/lights/{}", i));
   }
   checkCamera(request.camera);
+  checkGiSettings(document);
 }
 
 // --- Scene ------------------------------------------------------------------------------------
@@ -374,11 +414,13 @@ void checkSceneSourceCount(const json& request) {
   const auto it = request.find("scene");
   if (it == request.end() || !it->is_object()) return;  // the schema reports other types
   std::size_t sources = 0;
-  for (const char* key : {"asset", "demo", "glb_base64"}) sources += it->contains(key) ? 1 : 0;
+  for (const char* key : {"asset", "builtin", "demo", "glb_base64"}) {
+    sources += it->contains(key) ? 1 : 0;
+  }
   if (sources != 1) {
     throw Error(ErrorCode::BadRequest,
-                fmt::format("must have exactly one of the properties asset, demo or glb_base64, "
-                            "got {}",
+                fmt::format("must have exactly one of the properties asset, builtin, demo or "
+                            "glb_base64, got {}",
                             sources),
                 "/scene");
   }
@@ -446,6 +488,12 @@ SceneSource readInlineGlbScene(const std::string& text, const RequestLimits& lim
 SceneSource readScene(const json& request, const RequestLimits& limits) {
   const auto it = request.find("scene");
   if (it == request.end() || it->contains("demo")) return {};
+  if (const auto builtin = it->find("builtin"); builtin != it->end()) {
+    SceneSource scene;
+    readEnum(*it, "builtin", scene.builtin);
+    if (scene.builtin != BuiltinScene::Demo) scene.displayName = builtin->get<std::string>();
+    return scene;
+  }
   if (const auto asset = it->find("asset"); asset != it->end()) {
     return readAssetScene(asset->get<std::string>());
   }
@@ -464,7 +512,7 @@ RenderRequest parseRenderRequest(const json& request, const RequestLimits& limit
   validateRequestSchema(request);
   RenderRequest result = readRequestWithoutScene(request);
   checkLimits(result, limits);
-  checkMeaning(result);
+  checkMeaning(result, request);
   result.scene = readScene(request, limits);
   return result;
 }

@@ -37,6 +37,8 @@ class MaterialTable {
   // give the default material.
   const Material& at(int index) const;
   std::size_t size() const { return materials_.size(); }
+  // One per scene material, in the scene's order.
+  const std::vector<Material>& materials() const { return materials_; }
 
  private:
   std::vector<Material> materials_;

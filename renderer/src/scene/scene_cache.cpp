@@ -8,6 +8,7 @@
 #include "core/stopwatch.hpp"
 #include "gl/gl_api.hpp"
 #include "scene/asset_path.hpp"
+#include "scene/atrium_scene.hpp"
 #include "scene/demo_scene.hpp"
 #include "scene/gltf/gltf_loader.hpp"
 
@@ -44,7 +45,7 @@ std::string optionsKey(const SceneLoadOptions& options) {
   return key;
 }
 
-// Texture compression changes the upload, whatever the source (the demo included).
+// Texture compression changes the upload, whatever the source (the builtin scenes included).
 std::string uploadKey(const SceneLoadOptions& options) {
   return options.textureCompression == TextureCompression::Bc ? "|bc" : "";
 }
@@ -54,14 +55,16 @@ std::string uploadKey(const SceneLoadOptions& options) {
 std::string SceneCache::keyFor(const SceneSource& source, const SceneLoadOptions& options) const {
   const std::string base = sourceKey(source);
   if (base.empty()) return base;
-  if (source.kind == SceneSource::Kind::Demo) return base + uploadKey(options);
+  if (source.kind == SceneSource::Kind::Builtin) return base + uploadKey(options);
   return base + optionsKey(options) + uploadKey(options);
 }
 
 std::string SceneCache::sourceKey(const SceneSource& source) const {
   switch (source.kind) {
-    case SceneSource::Kind::Demo:
-      return "demo";
+    case SceneSource::Kind::Builtin:
+      return source.builtin == BuiltinScene::Demo
+                 ? "demo"
+                 : "builtin:" + std::string(enumName(source.builtin));
     case SceneSource::Kind::InlineGlb:
       return fmt::format("glb:{:016x}:{}", fnv1a(source.glbBytes), source.glbBytes.size());
     case SceneSource::Kind::UploadedGltf: {
@@ -91,8 +94,8 @@ Scene SceneCache::load(const SceneSource& source, const SceneLoadOptions& option
   limits.maxTriangles = options_.maxTriangles;
   limits.maxTextureSize = options_.maxTextureSize;
   switch (source.kind) {
-    case SceneSource::Kind::Demo:
-      return makeDemoScene();
+    case SceneSource::Kind::Builtin:
+      return source.builtin == BuiltinScene::Atrium ? makeAtriumScene() : makeDemoScene();
     case SceneSource::Kind::InlineGlb:
       return loadGlbBytes(source.glbBytes,
                           source.displayName.empty() ? "inline.glb" : source.displayName, limits,

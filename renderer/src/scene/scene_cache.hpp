@@ -25,15 +25,26 @@ struct TraceSceneSlot {
   std::uint64_t epoch = 0;
 };
 
+// GPU data that another part of the renderer derives from a cached scene and keeps with it (the
+// triangles and materials that GI resolves ray hits with, gi/hit_geometry.hpp): built by the
+// first frame that needs it, freed with the scene, counted against the cache's budget.
+class SceneAttachment {
+ public:
+  virtual ~SceneAttachment() = default;
+  virtual std::size_t gpuBytes() const = 0;
+};
+
 struct CachedScene {
   Scene scene;
   std::unique_ptr<GpuScene> gpu;
   // Built lazily, by frames that hold the entry as const: part of the cache, not of the scene.
   mutable TraceSceneSlot trace;
+  mutable std::unique_ptr<SceneAttachment> hitGeometry;
 
-  // GPU memory held: the GL upload and the acceleration structures.
+  // GPU memory held: the GL upload, the acceleration structures and the hit geometry.
   std::size_t gpuBytes() const {
-    return gpu->gpuBytes() + (trace.scene ? trace.scene->gpuBytes() : 0);
+    return gpu->gpuBytes() + (trace.scene ? trace.scene->gpuBytes() : 0) +
+           (hitGeometry ? hitGeometry->gpuBytes() : 0);
   }
 };
 

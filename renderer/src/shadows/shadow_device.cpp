@@ -1,7 +1,9 @@
 #include "shadows/shadow_device.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "context/container_hints.hpp"
 #include "gl/gl_api.hpp"
 #include "lgh/error.hpp"
 
@@ -48,7 +50,7 @@ vk::ShadowTracer* ShadowDevice::tracer() {
         info.deviceName, info.driverName, info.rayQuery, info.rayTracingPipeline,
         info.externalMemoryFd, info.externalSemaphoreFd, info.createMs);
   } catch (const Error& error) {
-    reason_ = error.message();
+    reason_ = error.message() + vulkanDriverHints();
     spdlog::warn("shadows: unavailable: {}", reason_);
   }
   return tracer_.get();
@@ -72,6 +74,35 @@ ShadowInfo ShadowDevice::info(const std::string& transport) const {
   info.externalSemaphores = tracer.externalSemaphoreFd;
   info.transport = transport;
   return info;
+}
+
+vk::TracePath chooseTracePath(const vk::ShadowTracer& tracer, ShadowTracing requested) {
+  const bool rayQuery = tracer.supports(vk::TracePath::RayQuery);
+  if (requested == ShadowTracing::Auto) {
+    return rayQuery ? vk::TracePath::RayQuery : vk::TracePath::Pipeline;
+  }
+  const vk::TracePath path =
+      requested == ShadowTracing::RayQuery ? vk::TracePath::RayQuery : vk::TracePath::Pipeline;
+  if (!tracer.supports(path)) {
+    throw Error(ErrorCode::Invalid,
+                fmt::format("the Vulkan device '{}' has no {} ({}); ask for \"auto\"",
+                            tracer.info().deviceName, enumName(path),
+                            path == vk::TracePath::RayQuery ? "VK_KHR_ray_query"
+                                                            : "VK_KHR_ray_tracing_pipeline"),
+                "/settings/shadow_path");
+  }
+  return path;
+}
+
+const vk::TraceScene& ShadowDevice::traceScene(const CachedScene& scene, double* buildMs) {
+  TraceSceneSlot& slot = scene.trace;
+  if (!slot.scene || slot.epoch != epoch_) {
+    slot.scene.reset();
+    slot.scene = tracer()->buildScene(scene.scene);
+    slot.epoch = epoch_;
+    if (buildMs != nullptr) *buildMs = slot.scene->buildGpuMs();
+  }
+  return *slot.scene;
 }
 
 void ShadowDevice::reset(const std::string& why) {

@@ -8,7 +8,9 @@
 #include <memory>
 #include <string>
 
+#include "lgh/request.hpp"
 #include "lgh/shadow_info.hpp"
+#include "scene/scene_cache.hpp"
 #include "vk/shadow_tracer.hpp"
 
 namespace lgh {
@@ -31,6 +33,10 @@ class ShadowDevice {
   std::uint64_t epoch() const { return epoch_; }
   // Drops the tracer after a failure (a lost device, say); the next tracer() makes a new one.
   void reset(const std::string& why);
+  // The acceleration structures of `scene` on the tracer (which must exist): built on first use
+  // and after a new tracer, cached with the scene; `*buildMs` gets their GPU build time when this
+  // call built them.
+  const vk::TraceScene& traceScene(const CachedScene& scene, double* buildMs = nullptr);
 
  private:
   std::unique_ptr<vk::ShadowTracer> tracer_;
@@ -41,5 +47,10 @@ class ShadowDevice {
 
 // The GL context's device UUID (GL_EXT_memory_object or GL_EXT_semaphore), or why there is none.
 bool glDeviceUuid(vk::DeviceUuid& uuid, std::string& whyNot);
+
+// The tracing path for a request's settings.shadow_path: auto is ray query where the device has
+// it, else the pipeline. Throws lgh::Error(Invalid) naming /settings/shadow_path for a path the
+// device lacks.
+vk::TracePath chooseTracePath(const vk::ShadowTracer& tracer, ShadowTracing requested);
 
 }  // namespace lgh

@@ -43,21 +43,7 @@ vk::ShadowTracer* ShadowFrame::tracerFor(const ShadowSettings& settings, FrameRe
 }
 
 vk::TracePath ShadowFrame::choosePath(vk::ShadowTracer& tracer, ShadowTracing requested) const {
-  const bool rayQuery = tracer.supports(vk::TracePath::RayQuery);
-  if (requested == ShadowTracing::Auto) {
-    return rayQuery ? vk::TracePath::RayQuery : vk::TracePath::Pipeline;
-  }
-  const vk::TracePath path =
-      requested == ShadowTracing::RayQuery ? vk::TracePath::RayQuery : vk::TracePath::Pipeline;
-  if (!tracer.supports(path)) {
-    throw Error(ErrorCode::Invalid,
-                fmt::format("the Vulkan device '{}' has no {} ({}); ask for \"auto\"",
-                            tracer.info().deviceName, enumName(path),
-                            path == vk::TracePath::RayQuery ? "VK_KHR_ray_query"
-                                                            : "VK_KHR_ray_tracing_pipeline"),
-                "/settings/shadow_path");
-  }
-  return path;
+  return chooseTracePath(tracer, requested);
 }
 
 ShadowRayLayout ShadowFrame::budget(const ShadowFrameInputs& inputs, FrameReport& report) const {
@@ -77,15 +63,9 @@ ShadowRayLayout ShadowFrame::budget(const ShadowFrameInputs& inputs, FrameReport
   return layout;
 }
 
-const vk::TraceScene& ShadowFrame::traceScene(vk::ShadowTracer& tracer, const CachedScene& scene) {
-  TraceSceneSlot& slot = scene.trace;
-  if (!slot.scene || slot.epoch != device_->epoch()) {
-    slot.scene.reset();
-    slot.scene = tracer.buildScene(scene.scene);
-    slot.epoch = device_->epoch();
-    buildMs_ = slot.scene->buildGpuMs();
-  }
-  return *slot.scene;
+const vk::TraceScene& ShadowFrame::traceScene(vk::ShadowTracer& /*tracer*/,
+                                              const CachedScene& scene) {
+  return device_->traceScene(scene, &buildMs_);
 }
 
 void ShadowFrame::trace(const ShadowFrameInputs& inputs, const CachedScene& scene,

@@ -1,13 +1,12 @@
 #include "vk/ray_buffer_set.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "lgh/error.hpp"
+#include "vk/shared_buffer.hpp"
 #include "vk/vulkan_device.hpp"
 
 namespace lgh::vk {
@@ -15,36 +14,6 @@ namespace {
 
 constexpr std::uint64_t kVec4Bytes = 16;
 constexpr std::uint64_t kWordBytes = 4;
-
-SharedBuffer describe(const DeviceBuffer& buffer, Transport transport) {
-  SharedBuffer shared;
-  shared.size = buffer.size();
-  if (transport == Transport::Interop) {
-    shared.fd = buffer.exportFd();
-    shared.allocationSize = buffer.allocationSize();
-    shared.dedicated = true;
-  } else {
-    shared.mapped = buffer.mapped();
-  }
-  return shared;
-}
-
-DeviceBuffer createRayBuffer(const VulkanDevice& device, std::uint64_t size, Transport transport) {
-  return {
-      device,
-      {.size = size,
-       // Transfers too: whoever imports them (GL, another Vulkan device) may copy.
-       .usage = ::vk::BufferUsageFlagBits::eStorageBuffer |
-                ::vk::BufferUsageFlagBits::eTransferSrc | ::vk::BufferUsageFlagBits::eTransferDst,
-       .memory =
-           transport == Transport::Interop ? MemoryKind::Exportable : MemoryKind::HostVisible}};
-}
-
-void closeFds(const RayBuffers& buffers) {
-  for (const SharedBuffer* buffer : {&buffers.origins, &buffers.targets, &buffers.visibility}) {
-    if (buffer->fd >= 0) close(buffer->fd);
-  }
-}
 
 }  // namespace
 
@@ -54,11 +23,12 @@ RayBuffers RayBufferSet::describeAll(const Buffers& buffers, Transport transport
   shared.transport = transport;
   shared.generation = generation;
   try {
-    shared.origins = describe(buffers.origins, transport);
-    shared.targets = describe(buffers.targets, transport);
-    shared.visibility = describe(buffers.visibility, transport);
+    shared.origins = describeShared(buffers.origins, transport);
+    shared.targets = describeShared(buffers.targets, transport);
+    shared.visibility = describeShared(buffers.visibility, transport);
   } catch (...) {
-    closeFds(shared);  // those exported before the failure: nobody else will
+    // Those exported before the failure: nobody else will close them.
+    closeSharedFds({&shared.origins, &shared.targets, &shared.visibility});
     throw;
   }
   return shared;
@@ -113,9 +83,9 @@ void RayBufferSet::reallocate(const VulkanDevice& device, const RayBatchShape& s
   shared_ = RayBuffers{};
   shared_.transport = transport;
   shared_.generation = generation;
-  buffers_.emplace(Buffers{createRayBuffer(device, bytes.origins, transport),
-                           createRayBuffer(device, bytes.targets, transport),
-                           createRayBuffer(device, bytes.visibility, transport)});
+  buffers_.emplace(Buffers{createSharedBuffer(device, bytes.origins, transport),
+                           createSharedBuffer(device, bytes.targets, transport),
+                           createSharedBuffer(device, bytes.visibility, transport)});
   shared_ = describeAll(*buffers_, transport, shared_.generation);
   spdlog::debug("vulkan: ray buffers, generation {}: {} + {} + {} bytes ({})", shared_.generation,
                 bytes.origins, bytes.targets, bytes.visibility,

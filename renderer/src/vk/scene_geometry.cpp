@@ -20,8 +20,10 @@ bool inRange(const Primitive& primitive, std::size_t firstOfTriangle) {
                      [vertexCount](std::uint32_t index) { return index < vertexCount; });
 }
 
-void appendPrimitive(const Primitive& primitive, PackedGeometry& packed, PackedMesh& mesh) {
+void appendPrimitive(const Primitive& primitive, std::size_t source, PackedGeometry& packed,
+                     PackedMesh& mesh) {
   PackedPrimitive placed;
+  placed.sourcePrimitive = static_cast<std::uint32_t>(source);
   placed.firstVertex = static_cast<std::uint32_t>(packed.positions.size());
   placed.vertexCount = static_cast<std::uint32_t>(primitive.vertices.size());
   placed.firstIndex = static_cast<std::uint32_t>(packed.indices.size());
@@ -56,8 +58,9 @@ PackedGeometry packGeometry(const Scene& scene) {
   PackedGeometry packed;
   packed.meshes.resize(scene.meshes.size());
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-    for (const Primitive& primitive : scene.meshes[m].primitives) {
-      appendPrimitive(primitive, packed, packed.meshes[m]);
+    const std::vector<Primitive>& primitives = scene.meshes[m].primitives;
+    for (std::size_t p = 0; p < primitives.size(); ++p) {
+      appendPrimitive(primitives[p], p, packed, packed.meshes[m]);
       checkSize(packed);
     }
   }

@@ -18,6 +18,7 @@ namespace lgh::vk {
 // One primitive's triangles: `vertexCount` positions from `firstVertex` and `triangleCount` * 3
 // indices from `firstIndex`, each relative to the primitive's first vertex.
 struct PackedPrimitive {
+  std::uint32_t sourcePrimitive = 0;  // its index in the Scene mesh's primitives
   std::uint32_t firstVertex = 0;
   std::uint32_t vertexCount = 0;
   std::uint32_t firstIndex = 0;

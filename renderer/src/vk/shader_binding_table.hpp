@@ -1,7 +1,7 @@
-// The shader binding table of the ray-tracing path: one record each for the raygen group, the
-// miss group and an empty hit group (no hit shader runs: the rays skip closest hits and every
-// geometry is opaque), each region starting at shaderGroupBaseAlignment and each record
-// shaderGroupHandleAlignment apart.
+// The shader binding table of a ray-tracing pipeline: one record each for the raygen group, the
+// miss group and the hit group (empty for shadow rays, which skip closest hits on opaque
+// geometry; a closest-hit shader for closest-hit batches), each region starting at
+// shaderGroupBaseAlignment and each record shaderGroupHandleAlignment apart.
 #pragma once
 
 #include "vk/device_buffer.hpp"

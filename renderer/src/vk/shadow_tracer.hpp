@@ -111,6 +111,32 @@ struct TraceTimings {
   double traceGpuMs = 0.0;  // Vulkan timestamps around the trace
 };
 
+// ---- Closest hits: the light paths of GI's VPLs and the path-traced reference (docs/GI.md) ----
+// A batch of `rays` rays in two buffers that Vulkan owns and shares with GL like the shadow rays:
+//   rays  2 x vec4 per ray: (origin.xyz, tMin), (direction.xyz, tMax); the direction need not be
+//         unit length (t is in its units); a ray with !(tMax > tMin) is not traced (a miss).
+//   hits  one HitRecord (32 bytes, glsl/include/hit_record.glsl) per ray: t (< 0: a miss), the
+//         instance (its index in Scene::instances), the geometry (the primitive's index among
+//         its mesh's primitives that have triangles: vk::PackedMesh::primitives), the primitive
+//         (the triangle's index among that primitive's kept triangles), the barycentrics of the
+//         triangle's vertices 1 and 2, and 1 when the ray met the counter-clockwise side.
+// Any: an occlusion query; the record tells a hit (t >= 0) from a miss, nothing more.
+enum class HitQuery { Closest, Any };
+
+struct HitBatchShape {
+  std::uint32_t rays = 0;
+  HitQuery query = HitQuery::Closest;
+};
+inline constexpr std::uint64_t kHitRayBytes = 32;
+inline constexpr std::uint64_t kHitRecordBytes = 32;
+
+struct HitBuffers {
+  Transport transport = Transport::Staging;
+  std::uint64_t generation = 0;  // changes whenever the buffers are reallocated
+  SharedBuffer rays;
+  SharedBuffer hits;
+};
+
 class ShadowTracer {
  public:
   // Loads libvulkan.so.1 at run time, picks the physical device whose deviceUUID equals
@@ -150,6 +176,14 @@ class ShadowTracer {
   // The GPU time of the traces since the last call (waits for the GPU if they are still
   // running), summed.
   virtual TraceTimings collectTimings() = 0;
+
+  // Closest hits, with buffers, semaphores and timings of their own (the shadow rays' stay as
+  // they are): the same contract as rayBuffers, exportSemaphores, trace and collectTimings.
+  virtual const HitBuffers& hitBuffers(std::uint32_t rays, Transport transport) = 0;
+  virtual SemaphoreFds exportHitSemaphores() = 0;
+  virtual void traceHits(const TraceScene& scene, TracePath path, const HitBatchShape& shape,
+                         bool useSemaphores) = 0;
+  virtual TraceTimings collectHitTimings() = 0;
 };
 
 }  // namespace lgh::vk

@@ -10,5 +10,9 @@ namespace lgh::vk::spirv {
 std::span<const std::uint32_t> shadow_ray_query_comp();
 std::span<const std::uint32_t> shadow_ray_rgen();
 std::span<const std::uint32_t> shadow_ray_rmiss();
+std::span<const std::uint32_t> closest_hit_query_comp();
+std::span<const std::uint32_t> closest_hit_rgen();
+std::span<const std::uint32_t> closest_hit_rmiss();
+std::span<const std::uint32_t> closest_hit_rchit();
 
 }  // namespace lgh::vk::spirv

@@ -1,6 +1,6 @@
 #include "vk/trace_barriers.hpp"
 
-#include <array>
+#include <vector>
 
 namespace lgh::vk {
 namespace {
@@ -8,21 +8,23 @@ namespace {
 using Access = ::vk::AccessFlagBits;
 using Stage = ::vk::PipelineStageFlagBits;
 
-// The three buffers handed between queue families: from `from` to `to`.
-std::array<::vk::BufferMemoryBarrier, 3> ownershipTransfer(const TraceBarrierScope& scope,
-                                                           std::uint32_t from, std::uint32_t to,
-                                                           ::vk::AccessFlags written,
-                                                           ::vk::AccessFlags read) {
-  const auto barrier = [&](::vk::Buffer buffer) {
-    return ::vk::BufferMemoryBarrier{.srcAccessMask = written,
-                                     .dstAccessMask = read,
-                                     .srcQueueFamilyIndex = from,
-                                     .dstQueueFamilyIndex = to,
-                                     .buffer = buffer,
-                                     .offset = 0,
-                                     .size = VK_WHOLE_SIZE};
-  };
-  return {barrier(scope.origins), barrier(scope.targets), barrier(scope.visibility)};
+// The shared buffers handed between queue families: from `from` to `to`.
+std::vector<::vk::BufferMemoryBarrier> ownershipTransfer(const TraceBarrierScope& scope,
+                                                         std::uint32_t from, std::uint32_t to,
+                                                         ::vk::AccessFlags written,
+                                                         ::vk::AccessFlags read) {
+  std::vector<::vk::BufferMemoryBarrier> barriers;
+  barriers.reserve(scope.buffers.size());
+  for (const ::vk::Buffer buffer : scope.buffers) {
+    barriers.push_back({.srcAccessMask = written,
+                        .dstAccessMask = read,
+                        .srcQueueFamilyIndex = from,
+                        .dstQueueFamilyIndex = to,
+                        .buffer = buffer,
+                        .offset = 0,
+                        .size = VK_WHOLE_SIZE});
+  }
+  return barriers;
 }
 
 }  // namespace

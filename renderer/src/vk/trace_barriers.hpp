@@ -1,9 +1,11 @@
 // The barriers around a trace: the scene built by earlier submissions becomes readable by the
 // trace's shaders; interop buffers pass from GL (the external queue family) to Vulkan and back;
-// staging results become visible to the host that reads them.
+// staging results become visible to the host that reads them. Shadow batches share three
+// buffers with GL, closest-hit batches two.
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include "vk/shadow_tracer.hpp"
 #include "vk/vulkan_hpp.hpp"
@@ -14,9 +16,7 @@ struct TraceBarrierScope {
   ::vk::PipelineStageFlags traceStage;  // the stage of the tracing path's shaders
   Transport transport = Transport::Staging;
   std::uint32_t queueFamily = 0;
-  ::vk::Buffer origins;
-  ::vk::Buffer targets;
-  ::vk::Buffer visibility;
+  std::span<const ::vk::Buffer> buffers;  // the buffers shared with GL
 };
 
 void recordBarriersBeforeTrace(const ::vk::raii::CommandBuffer& commands,

@@ -3,21 +3,21 @@
 #include <array>
 #include <vector>
 
+#include "lgh/error.hpp"
 #include "vk/vulkan_device.hpp"
 
 namespace lgh::vk {
 namespace {
 
-constexpr std::uint32_t kBufferBindings = 3;  // origins, targets, visibility
-
 ::vk::raii::DescriptorSetLayout createSetLayout(const ::vk::raii::Device& device,
-                                                ::vk::ShaderStageFlags stages) {
-  std::array<::vk::DescriptorSetLayoutBinding, 1 + kBufferBindings> bindings{};
+                                                ::vk::ShaderStageFlags stages,
+                                                std::uint32_t buffers) {
+  std::vector<::vk::DescriptorSetLayoutBinding> bindings(1 + buffers);
   bindings[0] = {.binding = 0,
                  .descriptorType = ::vk::DescriptorType::eAccelerationStructureKHR,
                  .descriptorCount = 1,
                  .stageFlags = stages};
-  for (std::uint32_t i = 1; i <= kBufferBindings; ++i) {
+  for (std::uint32_t i = 1; i <= buffers; ++i) {
     bindings[i] = {.binding = i,
                    .descriptorType = ::vk::DescriptorType::eStorageBuffer,
                    .descriptorCount = 1,
@@ -30,20 +30,21 @@ constexpr std::uint32_t kBufferBindings = 3;  // origins, targets, visibility
 
 ::vk::raii::PipelineLayout createPipelineLayout(const ::vk::raii::Device& device,
                                                 const ::vk::raii::DescriptorSetLayout& setLayout,
-                                                ::vk::ShaderStageFlags stages) {
+                                                ::vk::ShaderStageFlags stages,
+                                                std::uint32_t constantBytes) {
   const ::vk::DescriptorSetLayout set = *setLayout;
-  const ::vk::PushConstantRange constants{
-      .stageFlags = stages, .offset = 0, .size = sizeof(TracePushConstants)};
+  const ::vk::PushConstantRange constants{.stageFlags = stages, .offset = 0, .size = constantBytes};
   return {device, ::vk::PipelineLayoutCreateInfo{.setLayoutCount = 1,
                                                  .pSetLayouts = &set,
                                                  .pushConstantRangeCount = 1,
                                                  .pPushConstantRanges = &constants}};
 }
 
-::vk::raii::DescriptorPool createPool(const ::vk::raii::Device& device, std::uint32_t sets) {
+::vk::raii::DescriptorPool createPool(const ::vk::raii::Device& device, std::uint32_t sets,
+                                      std::uint32_t buffers) {
   const std::array<::vk::DescriptorPoolSize, 2> sizes{{
       {.type = ::vk::DescriptorType::eAccelerationStructureKHR, .descriptorCount = sets},
-      {.type = ::vk::DescriptorType::eStorageBuffer, .descriptorCount = kBufferBindings * sets},
+      {.type = ::vk::DescriptorType::eStorageBuffer, .descriptorCount = buffers * sets},
   }};
   // Free-able sets: vk::raii frees each set it holds.
   return {device, ::vk::DescriptorPoolCreateInfo{
@@ -66,34 +67,45 @@ constexpr std::uint32_t kBufferBindings = 3;  // origins, targets, visibility
 }  // namespace
 
 TraceLayout::TraceLayout(const VulkanDevice& device, ::vk::ShaderStageFlags stages,
-                         std::uint32_t sets)
+                         std::uint32_t sets, std::uint32_t buffers, std::uint32_t constantBytes)
     : device_(&device.device()),
       stages_(stages),
-      setLayout_(createSetLayout(device.device(), stages)),
-      pipelineLayout_(createPipelineLayout(device.device(), setLayout_, stages)),
-      pool_(createPool(device.device(), sets)),
+      buffers_(buffers),
+      setLayout_(createSetLayout(device.device(), stages, buffers)),
+      pipelineLayout_(createPipelineLayout(device.device(), setLayout_, stages, constantBytes)),
+      pool_(createPool(device.device(), sets, buffers)),
       sets_(allocateSets(device.device(), pool_, setLayout_, sets)) {}
 
 void TraceLayout::write(std::uint32_t index, const TraceBindings& bindings) const {
-  const ::vk::WriteDescriptorSetAccelerationStructureKHR scene{
-      .accelerationStructureCount = 1, .pAccelerationStructures = &bindings.scene};
-  const std::array<::vk::DescriptorBufferInfo, kBufferBindings> buffers{{
-      {.buffer = bindings.origins, .offset = 0, .range = VK_WHOLE_SIZE},
-      {.buffer = bindings.targets, .offset = 0, .range = VK_WHOLE_SIZE},
-      {.buffer = bindings.visibility, .offset = 0, .range = VK_WHOLE_SIZE},
-  }};
+  const std::array<::vk::Buffer, 3> buffers{bindings.origins, bindings.targets,
+                                            bindings.visibility};
+  write(index, bindings.scene, buffers);
+}
+
+void TraceLayout::write(std::uint32_t index, ::vk::AccelerationStructureKHR scene,
+                        std::span<const ::vk::Buffer> buffers) const {
+  if (buffers.size() != buffers_) {
+    throw Error(ErrorCode::Internal, "a trace layout written with the wrong number of buffers");
+  }
+  const ::vk::WriteDescriptorSetAccelerationStructureKHR structure{
+      .accelerationStructureCount = 1, .pAccelerationStructures = &scene};
+  std::vector<::vk::DescriptorBufferInfo> infos;
+  infos.reserve(buffers.size());
+  for (const ::vk::Buffer buffer : buffers) {
+    infos.push_back({.buffer = buffer, .offset = 0, .range = VK_WHOLE_SIZE});
+  }
   const ::vk::DescriptorSet set = *sets_[index];
   const std::array<::vk::WriteDescriptorSet, 2> writes{{
-      {.pNext = &scene,
+      {.pNext = &structure,
        .dstSet = set,
        .dstBinding = 0,
        .descriptorCount = 1,
        .descriptorType = ::vk::DescriptorType::eAccelerationStructureKHR},
       {.dstSet = set,
        .dstBinding = 1,
-       .descriptorCount = kBufferBindings,
+       .descriptorCount = static_cast<std::uint32_t>(infos.size()),
        .descriptorType = ::vk::DescriptorType::eStorageBuffer,
-       .pBufferInfo = buffers.data()},
+       .pBufferInfo = infos.data()},
   }};
   device_->updateDescriptorSets(writes, nullptr);
 }

@@ -1,9 +1,11 @@
 // What both tracing paths bind (glsl/vk/include/shadow_rays.glsl): the top level and the three
 // ray buffers in one descriptor set, and the batch's constants as push constants. One set per
-// submission slot, so a set is never rewritten while the GPU may still read it.
+// submission slot, so a set is never rewritten while the GPU may still read it. The closest-hit
+// batches (vk/hit_tracer.hpp) use the same layout with two buffers and their own constants.
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include "vk/vulkan_hpp.hpp"
 
@@ -32,20 +34,31 @@ struct TraceBindings {
 
 class TraceLayout {
  public:
-  // `stages`: the shader stages of the tracing paths the device has.
-  TraceLayout(const VulkanDevice& device, ::vk::ShaderStageFlags stages, std::uint32_t sets);
+  // `stages`: the shader stages of the tracing paths the device has; `buffers` storage buffers
+  // at bindings 1..buffers after the top level; push constants of `constantBytes`.
+  TraceLayout(const VulkanDevice& device, ::vk::ShaderStageFlags stages, std::uint32_t sets,
+              std::uint32_t buffers = 3, std::uint32_t constantBytes = sizeof(TracePushConstants));
 
   const ::vk::raii::PipelineLayout& pipelineLayout() const { return pipelineLayout_; }
   ::vk::ShaderStageFlags stages() const { return stages_; }
   ::vk::DescriptorSet set(std::uint32_t index) const { return *sets_[index]; }
   // Points set `index` at `bindings`; the GPU must be done with that set.
   void write(std::uint32_t index, const TraceBindings& bindings) const;
+  // The same for a layout of buffers.size() buffers.
+  void write(std::uint32_t index, ::vk::AccelerationStructureKHR scene,
+             std::span<const ::vk::Buffer> buffers) const;
   void pushConstants(const ::vk::raii::CommandBuffer& commands,
                      const TracePushConstants& constants) const;
+  template <typename Constants>
+  void pushConstantsOf(const ::vk::raii::CommandBuffer& commands,
+                       const Constants& constants) const {
+    commands.pushConstants<Constants>(*pipelineLayout_, stages_, 0, constants);
+  }
 
  private:
   const ::vk::raii::Device* device_;
   ::vk::ShaderStageFlags stages_;
+  std::uint32_t buffers_;
   ::vk::raii::DescriptorSetLayout setLayout_;
   ::vk::raii::PipelineLayout pipelineLayout_;
   ::vk::raii::DescriptorPool pool_;

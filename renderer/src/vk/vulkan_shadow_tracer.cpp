@@ -1,6 +1,7 @@
 // ShadowTracer on Vulkan: the device that is the GL device, the tracing paths it offers, the ray
 // buffers and semaphores shared with GL, and the submissions in flight. Every public function
 // turns Vulkan failures into lgh::Error at its boundary.
+#include <array>
 #include <memory>
 #include <optional>
 
@@ -11,6 +12,7 @@
 #include "lgh/error.hpp"
 #include "vk/acceleration_scene.hpp"
 #include "vk/exported_semaphores.hpp"
+#include "vk/hit_tracer.hpp"
 #include "vk/physical_device.hpp"
 #include "vk/ray_buffer_set.hpp"
 #include "vk/shadow_tracer.hpp"
@@ -56,7 +58,8 @@ class VulkanShadowTracer final : public ShadowTracer {
       : device_(std::move(device)),
         info_(device_->info()),
         layout_(*device_, traceStages(device_->capabilities()), kSlots),
-        submissions_(*device_, kSlots) {
+        submissions_(*device_, kSlots),
+        hits_(*device_, traceStages(device_->capabilities())) {
     if (info_.rayQuery) rayQuery_ = createRayQueryRecorder(*device_, layout_);
     if (info_.rayTracingPipeline) pipeline_ = createRayTracingPipelineRecorder(*device_, layout_);
   }
@@ -127,6 +130,23 @@ class VulkanShadowTracer final : public ShadowTracer {
     });
   }
 
+  // Closest hits: forwarded to their own half (vk/hit_tracer.hpp).
+  const HitBuffers& hitBuffers(std::uint32_t rays, Transport transport) override {
+    return translateVulkanErrors(
+        "hitBuffers", [&]() -> const HitBuffers& { return hits_.buffers(rays, transport); });
+  }
+  SemaphoreFds exportHitSemaphores() override {
+    return translateVulkanErrors("exportHitSemaphores", [&] { return hits_.exportSemaphores(); });
+  }
+  void traceHits(const TraceScene& scene, TracePath path, const HitBatchShape& shape,
+                 bool useSemaphores) override {
+    translateVulkanErrors("traceHits",
+                          [&] { hits_.trace(ownScene(scene), path, shape, useSemaphores); });
+  }
+  TraceTimings collectHitTimings() override {
+    return translateVulkanErrors("collectHitTimings", [&] { return hits_.collectTimings(); });
+  }
+
  private:
   const AccelerationScene& ownScene(const TraceScene& scene) const {
     const auto* built = dynamic_cast<const AccelerationScene*>(&scene);
@@ -160,12 +180,12 @@ class VulkanShadowTracer final : public ShadowTracer {
   void record(std::uint32_t slot, const TraceRecorder& recorder,
               const TracePushConstants& constants) const {
     const ::vk::raii::CommandBuffer& commands = submissions_.commands(slot);
+    const std::array<::vk::Buffer, 3> shared{rayBuffers_.origins(), rayBuffers_.targets(),
+                                             rayBuffers_.visibility()};
     const TraceBarrierScope scope{.traceStage = recorder.stage(),
                                   .transport = rayBuffers_.shared().transport,
                                   .queueFamily = device_->queueFamily(),
-                                  .origins = rayBuffers_.origins(),
-                                  .targets = rayBuffers_.targets(),
-                                  .visibility = rayBuffers_.visibility()};
+                                  .buffers = shared};
     commands.begin({.flags = ::vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     submissions_.timestamps().begin(commands, slot);
     recordBarriersBeforeTrace(commands, scope);
@@ -183,6 +203,7 @@ class VulkanShadowTracer final : public ShadowTracer {
   TraceSubmissions submissions_;
   RayBufferSet rayBuffers_;
   std::optional<ExportedSemaphores> semaphores_;
+  HitTracer hits_;
 };
 
 }  // namespace

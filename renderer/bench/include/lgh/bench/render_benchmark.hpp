@@ -17,6 +17,7 @@
 
 #include "lgh/bench/statistics.hpp"
 #include "lgh/device_info.hpp"
+#include "lgh/image.hpp"
 #include "lgh/renderer_options.hpp"
 #include "lgh/request.hpp"
 
@@ -60,6 +61,10 @@ struct OverdrawStats {
   std::uint32_t p95 = 0;
   std::vector<Bin> histogram;
 };
+
+// Overdraw statistics of per-pixel counts (GL order, row 0 at the bottom) over the pixels that
+// `coverage` (top row first, alpha > 0) covers.
+OverdrawStats overdrawStats(const std::vector<std::uint32_t>& counts, const FloatImage& coverage);
 
 // The LGH lighting (indirect image) against the brute-force image of the same VPLs.
 struct ReferenceError {

@@ -30,7 +30,7 @@ struct ShadowBenchmarkOptions {
   int filterIterations = 4;
   int timedIterations = 10;
   int warmupIterations = 3;
-  double warmupSeconds = 1.0;  // and at least this long: GPU clocks ramp up
+  double warmupSeconds = 1.0;    // and at least this long: GPU clocks ramp up
   int buildTriangles = 1000000;  // the generated scene of the build benchmark; 0: none
   int buildIterations = 3;
   RendererOptions renderer;

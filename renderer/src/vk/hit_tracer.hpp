@@ -1,0 +1,47 @@
+// The closest-hit half of the tracer (shadow_tracer.hpp, "Closest hits"): its own two-buffer
+// layout, recorders for the paths the device has, submissions in flight, shared buffers and
+// interop semaphores, beside the shadow rays' and independent of them. VulkanShadowTracer owns
+// one and forwards the closest-hit calls to it.
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "vk/exported_semaphores.hpp"
+#include "vk/hit_buffer_set.hpp"
+#include "vk/hit_recorder.hpp"
+#include "vk/shadow_tracer.hpp"
+#include "vk/trace_layout.hpp"
+#include "vk/trace_submissions.hpp"
+
+namespace lgh::vk {
+
+class AccelerationScene;
+class VulkanDevice;
+
+class HitTracer {
+ public:
+  // `stages`: the shader stages of the tracing paths the device has.
+  HitTracer(const VulkanDevice& device, ::vk::ShaderStageFlags stages);
+
+  const HitBuffers& buffers(std::uint32_t rays, Transport transport);
+  SemaphoreFds exportSemaphores();
+  void trace(const AccelerationScene& scene, TracePath path, const HitBatchShape& shape,
+             bool useSemaphores);
+  TraceTimings collectTimings();
+
+ private:
+  const HitRecorder& recorderFor(TracePath path) const;
+  void record(std::uint32_t slot, const HitRecorder& recorder,
+              const HitPushConstants& constants) const;
+
+  const VulkanDevice* device_;
+  TraceLayout layout_;
+  std::unique_ptr<HitRecorder> rayQuery_;
+  std::unique_ptr<HitRecorder> pipeline_;
+  TraceSubmissions submissions_;
+  HitBufferSet buffers_;
+  std::optional<ExportedSemaphores> semaphores_;
+};
+
+}  // namespace lgh::vk
