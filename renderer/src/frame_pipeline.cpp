@@ -60,8 +60,9 @@ FramePipeline::FramePipeline(ShadowDevice* shadowDevice)
     : shadows_(shadowDevice), gi_(shadowDevice) {}
 FramePipeline::~FramePipeline() = default;
 
-void FramePipeline::render(const RenderRequest& request, const CachedScene& cached,
-                           gl::GpuTimer& timer, FrameReport& report, LghFrameProbe* probe) {
+void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached,
+                         gl::GpuTimer& timer, FrameReport& report, OutputPixels pixels,
+                         LghFrameProbe* probe) {
   const OutputSettings& output = request.output;
   const CameraMatrices camera =
       computeCamera(request.camera, cached.scene, output.width, output.height);
@@ -101,26 +102,34 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   const GLuint shadowRatio =
       shadows_.filterLgh(shadowSettings.filterIterations, camera, targets_, timer);
   if (probe != nullptr && lgh.enabled) finishProbe(shadowRatio, camera, *probe);
-  {
+  const bool blends = ForwardBlendPass::needed(materials, *cached.gpu);
+  if (!blends) {
     gl::ScopedGpuPass pass(timer, "composite");
-    compositePass_.run(output, lgh.enabled, shadowRatio, targets_);
+    compositePass_.run(output, pixels, lgh.enabled, shadowRatio, targets_);
+  } else {
+    // Blending happens in linear light: composite into the scene target, blend the surfaces over
+    // it, then the display pass writes what is read back.
+    {
+      gl::ScopedGpuPass pass(timer, "composite");
+      compositePass_.runToScene(output, lgh.enabled, shadowRatio, targets_);
+    }
+    {
+      gl::ScopedGpuPass pass(timer, "forward blend");
+      const int blended = forwardBlendPass_.run(
+          {&materials, &camera, &request.settings.primitives, lightBuffer_.id(), lightCount,
+           request.settings.ambient, gbufferPass_.maxTessellationLevel()},
+          gbufferPass_.programs(), *cached.gpu, targets_);
+      report.decide("blended_surfaces", std::to_string(blended));
+    }
+    gl::ScopedGpuPass pass(timer, "display");
+    displayPass_.run(output, pixels, targets_);
   }
-  if (ForwardBlendPass::needed(materials, *cached.gpu)) {
-    gl::ScopedGpuPass pass(timer, "forward blend");
-    const int blended = forwardBlendPass_.run(
-        {&materials, &camera, &request.settings.primitives, lightBuffer_.id(), lightCount,
-         request.settings.ambient, gbufferPass_.maxTessellationLevel()},
-        gbufferPass_.programs(), *cached.gpu, targets_);
-    report.decide("blended_surfaces", std::to_string(blended));
-  }
-  const Stopwatch readback;
-  report.image = readbackFinal(targets_);
-  const double readbackMs = readback.elapsedMs();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  timer.collect(report.timings);
-  if (lghLighting_) lghLighting_->collectTimings(report.timings);
-  shadows_.collectTimings(report);
-  report.timings.add("readback", TimingRow::Clock::Cpu, readbackMs);
+  glFlush();  // the GPU starts on the frame while the Vulkan side's timings are waited for
+  FrameReport deferred;  // rows timed by Vulkan: the light paths', then the shadow rays'
+  if (lghLighting_) lghLighting_->collectTimings(deferred.timings);
+  shadows_.collectTimings(deferred);
+  report.deferredRows = std::move(deferred.timings);
   report.decide("lighting", lgh.enabled ? "direct+lgh" : "direct");
   report.decide("lights", std::to_string(lights.size()));
   report.decide("texture_memory", textureMemoryText(cached.gpu->textureMemory()));
@@ -213,6 +222,25 @@ void FramePipeline::finishProbe(GLuint shadowRatio, const CameraMatrices& camera
           glm::vec2(m[0] / 255.0F, m[1] / 255.0F);
     }
   }
+}
+
+void FramePipeline::pack(OutputPixels pixels, FramePixels::Layout layout, GLuint packBuffer,
+                         gl::GpuTimer& timer) {
+  gl::ScopedGpuPass pass(timer, "readback");
+  packOutput(targets_, pixels, layout, packBuffer);
+}
+
+void FramePipeline::render(const RenderRequest& request, const CachedScene& cached,
+                           gl::GpuTimer& timer, FrameReport& report, LghFrameProbe* probe) {
+  draw(request, cached, timer, report, OutputPixels::LinearFloat, probe);
+  const Stopwatch readback;
+  report.image = readLinearOutput(targets_);
+  const double readbackMs = readback.elapsedMs();
+  timer.collect(report.timings);
+  report.timings.rows.insert(report.timings.rows.end(), report.deferredRows.rows.begin(),
+                             report.deferredRows.rows.end());
+  report.deferredRows = {};
+  report.timings.add("readback", TimingRow::Clock::Cpu, readbackMs);
 }
 
 }  // namespace lgh

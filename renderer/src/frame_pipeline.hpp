@@ -2,8 +2,10 @@
 // on surfaces, or light paths: settings.gi) + LGH build + LGH lighting into the indirect target,
 // picking k shadow samples per pixel] -> shadow
 // rays (GL setup, Vulkan trace) -> direct lighting with visibility -> [LGH shadow ratio +
-// filter] -> composite -> [forward pass of blended surfaces] -> readback. Owns the passes and the
-// frame targets; the renderer owns the context and the scene cache. The LGH part
+// filter] -> composite (display codes for PNG, linear light for EXR) -> pack into a read-back
+// buffer; with blended surfaces: composite in linear light -> forward pass of blended surfaces ->
+// display pass -> pack. Owns the passes and the frame targets; the renderer owns the context, the
+// scene cache, the read-back buffers and the frames in flight. The LGH part
 // (passes/lgh_frame_lighting.hpp) is created on the first frame that enables it, so frames without
 // it run exactly as before.
 #pragma once
@@ -15,6 +17,7 @@
 #include "gl/gpu_timer.hpp"
 #include "passes/composite_pass.hpp"
 #include "passes/direct_lighting_pass.hpp"
+#include "passes/display_pass.hpp"
 #include "passes/forward_blend_pass.hpp"
 #include "passes/frame_targets.hpp"
 #include "passes/gbuffer_pass.hpp"
@@ -33,6 +36,18 @@ class FramePipeline {
   // How the last shadowed frame handed its rays to Vulkan ("" before any).
   std::string shadowTransport() const { return shadows_.transportName(); }
 
+  // Issues the frame's passes, the composite writing the output target for `pixels`; nothing is
+  // read back and the GPU timer is not read (its rows come once the frame is done). The shadow
+  // tracer's rows go to report.deferredRows.
+  void draw(const RenderRequest& request, const CachedScene& scene, gl::GpuTimer& timer,
+            FrameReport& report, OutputPixels pixels, LghFrameProbe* probe = nullptr);
+  // Issues the copy of the last frame's output into `packBuffer` as `layout`, timed as the GPU
+  // pass "readback".
+  void pack(OutputPixels pixels, FramePixels::Layout layout, GLuint packBuffer,
+            gl::GpuTimer& timer);
+
+  // draw() of linear float output, read back at once into report.image, the timer read: the
+  // synchronous frame of the tests and of the LGH benchmark's probes.
   void render(const RenderRequest& request, const CachedScene& scene, gl::GpuTimer& timer,
               FrameReport& report, LghFrameProbe* probe = nullptr);
 
@@ -50,6 +65,7 @@ class FramePipeline {
   DirectLightingPass directLightingPass_;
   CompositePass compositePass_;
   ForwardBlendPass forwardBlendPass_;
+  DisplayPass displayPass_;
   std::unique_ptr<LghFrameLighting> lghLighting_;
 };
 

@@ -14,8 +14,10 @@
 namespace lgh {
 
 struct FrameReport {
-  FloatImage image;  // linear RGBA, top row first
+  FloatImage image;  // linear RGBA, top row first: FramePipeline::render (synchronous) only
   TimingTable timings;
+  // Rows known before the GPU timer's but listed after them (the shadow tracer's).
+  TimingTable deferredRows;
   std::map<std::string, std::string> decisions;  // topic -> choice ("lgh_lighting" -> "compute")
   std::vector<std::string> warnings;
 

@@ -1,6 +1,9 @@
 #include "lgh/renderer.hpp"
 
+#include <algorithm>
 #include <cstdlib>
+#include <deque>
+#include <limits>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -12,12 +15,39 @@
 #include "gl/gl_api.hpp"
 #include "gl/gl_objects.hpp"
 #include "gl/gpu_timer.hpp"
+#include "gl/readback_buffers.hpp"
 #include "lgh/error.hpp"
 #include "scene/gltf/gltf_loader.hpp"
 #include "scene/scene_cache.hpp"
 #include "shadows/shadow_device.hpp"
 
 namespace lgh {
+namespace {
+
+SceneLoadOptions loadOptionsOf(const RenderRequest& request) {
+  SceneLoadOptions options;
+  options.animation = request.sceneOptions.animation;
+  options.materialVariant = request.sceneOptions.materialVariant;
+  options.ignoreUnsupportedExtensions = request.settings.ignoreUnsupportedExtensions;
+  options.textureCompression = request.settings.textureCompression;
+  return options;
+}
+
+// A submitted frame until finish() hands it over: its GPU timer, its fence and its pixels, which
+// the GPU is still writing until the fence signals.
+struct PendingFrame {
+  std::uint64_t id = 0;
+  OutputSettings output;
+  FramePixels pixels;
+  gl::GpuTimer timer;
+  gl::Fence fence;
+  FrameReport report;
+  bool sceneCacheHit = false;
+  Stopwatch::Clock::time_point submitted;                // when submit() returned
+  std::optional<Stopwatch::Clock::time_point> readBack;  // when its fence was seen signalled
+};
+
+}  // namespace
 
 struct Renderer::Impl {
   explicit Impl(const RendererOptions& opts)
@@ -50,15 +80,43 @@ struct Renderer::Impl {
   int simulatedLossAfter = -1;
   int frames = 0;
 
-  // Destroyed in reverse: the GL objects of the frame and the cache go first, then the Vulkan
-  // device that the cache's acceleration structures live on, then the GL context.
+  // Destroyed in reverse: the frames in flight and the read-back buffers, then the GL objects of
+  // the frame and the cache, then the Vulkan device that the cache's acceleration structures live
+  // on, then the GL context.
   RendererOptions options;
   std::unique_ptr<GlContext> context;
   DeviceInfo device;
   ShadowDevice shadowDevice;
   SceneCache cache;
   FramePipeline pipeline;
-  gl::GpuTimer timer;
+  gl::ReadbackPool readback;
+  std::vector<gl::GpuTimer> spareTimers;  // their queries are reused
+  std::deque<PendingFrame> pending;
+  std::uint64_t nextFrameId = 1;
+
+  void throwIfLost() const {
+    if (!healthy) {
+      throw Error(ErrorCode::Unavailable, "this renderer's GL context was lost: make a new one");
+    }
+  }
+  void makeCurrent() {
+    // Another Renderer on this thread may have made its own context current since.
+    if (gl::currentApi() != &context->api()) context->makeCurrent();
+  }
+  void waitFor(PendingFrame& frame) {
+    if (frame.readBack) return;
+    while (!frame.fence.wait(std::numeric_limits<std::uint64_t>::max())) {
+    }
+    frame.readBack = Stopwatch::Clock::now();
+  }
+  bool poll(PendingFrame& frame) {
+    if (frame.readBack) return true;
+    if (!frame.fence.wait(0)) return false;
+    frame.readBack = Stopwatch::Clock::now();
+    return true;
+  }
+  std::uint64_t submit(const RenderRequest& request);
+  RenderResult take(std::deque<PendingFrame>::iterator frame);
 };
 
 Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {}
@@ -100,11 +158,126 @@ ShadowInfo Renderer::shadowInfo() const {
   return impl_->shadowDevice.info(impl_->pipeline.shadowTransport());
 }
 
+Renderer::ReadbackStats Renderer::readbackStats() const {
+  const gl::ReadbackStats stats = impl_->readback.stats();
+  return {stats.heldBuffers, stats.heldBytes, stats.pooledBuffers, stats.pooledBytes};
+}
+
+std::size_t Renderer::pendingFrames() const { return impl_->pending.size(); }
+
+void Renderer::prefetch(const RenderRequest& request) {
+  impl_->cache.prefetch(request.scene, loadOptionsOf(request));
+}
+
+std::uint64_t Renderer::Impl::submit(const RenderRequest& request) {
+  throwIfLost();
+  makeCurrent();
+  const Stopwatch submitTimer;
+  const auto limit = static_cast<std::size_t>(std::max(options.framesInFlight, 1));
+  const auto unfinished = [&] {
+    return std::count_if(pending.begin(), pending.end(),
+                         [](const PendingFrame& frame) { return !frame.readBack; });
+  };
+  while (static_cast<std::size_t>(unfinished()) >= limit) {
+    const auto oldest = std::find_if(pending.begin(), pending.end(),
+                                     [](const PendingFrame& frame) { return !frame.readBack; });
+    waitFor(*oldest);
+  }
+
+  PendingFrame frame;
+  frame.output = request.output;
+  if (!spareTimers.empty()) {
+    frame.timer = std::move(spareTimers.back());
+    spareTimers.pop_back();
+  }
+  SceneCache::Lookup lookup = cache.get(request.scene, loadOptionsOf(request));
+  frame.sceneCacheHit = lookup.hit;
+  FrameReport& report = frame.report;
+  report.decide("scene_cache", lookup.hit ? "hit" : "miss");
+  if (lookup.prefetched) report.decide("scene_parse", "prefetched");
+  report.timings.add("scene load", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.loadMs);
+  report.timings.add("upload", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.uploadMs);
+  report.warnings = lookup.entry->scene.warnings;
+
+  const OutputPixels pixels = outputPixelsFor(request.output);
+  frame.pixels.width = request.output.width;
+  frame.pixels.height = request.output.height;
+  frame.pixels.layout = pixelLayoutFor(request.output);
+  const auto abandon = [&] {
+    frame.timer.discard();
+    spareTimers.push_back(std::move(frame.timer));
+  };
+  try {
+    pipeline.draw(request, *lookup.entry, frame.timer, report, pixels);
+    gl::ReadbackPool::Lease lease = readback.acquire(frame.pixels.size());
+    pipeline.pack(pixels, frame.pixels.layout, lease.buffer, frame.timer);
+    frame.pixels.bytes = std::move(lease.bytes);
+    frame.fence = gl::Fence::insert();
+  } catch (...) {
+    abandon();
+    checkContext();  // a lost context explains the failure better than the failure does
+    throw;
+  }
+  try {
+    checkContext();
+  } catch (...) {
+    abandon();
+    throw;
+  }
+  report.timings.add("submit", TimingRow::Clock::Cpu, submitTimer.elapsedMs());
+  frame.submitted = Stopwatch::Clock::now();
+  frame.id = nextFrameId++;
+  pending.push_back(std::move(frame));
+  return pending.back().id;
+}
+
+RenderResult Renderer::Impl::take(std::deque<PendingFrame>::iterator frame) {
+  waitFor(*frame);
+  FrameReport& report = frame->report;
+  report.timings.add("frame wait", TimingRow::Clock::Cpu,
+                     Stopwatch::millisecondsBetween(frame->submitted, *frame->readBack));
+  // The GPU rows after the CPU rows of the submit, as a frame's table always listed them.
+  TimingTable gpuRows;
+  frame->timer.collect(gpuRows);
+  RenderResult result;
+  result.frameId = frame->id;
+  result.output = frame->output;
+  result.pixels = std::move(frame->pixels);
+  result.device = device;
+  result.sceneCacheHit = frame->sceneCacheHit;
+  result.timings = std::move(report.timings);
+  result.timings.rows.insert(result.timings.rows.end(), gpuRows.rows.begin(), gpuRows.rows.end());
+  result.timings.rows.insert(result.timings.rows.end(), report.deferredRows.rows.begin(),
+                             report.deferredRows.rows.end());
+  result.decisions = std::move(report.decisions);
+  result.warnings = std::move(report.warnings);
+  spareTimers.push_back(std::move(frame->timer));
+  pending.erase(frame);
+  return result;
+}
+
+std::uint64_t Renderer::submit(const RenderRequest& request) { return impl_->submit(request); }
+
+std::optional<RenderResult> Renderer::finish(bool wait) {
+  if (impl_->pending.empty()) return std::nullopt;
+  impl_->throwIfLost();
+  impl_->makeCurrent();
+  if (!wait && !impl_->poll(impl_->pending.front())) return std::nullopt;
+  return impl_->take(impl_->pending.begin());
+}
+
+RenderResult Renderer::renderFrame(const RenderRequest& request) {
+  const std::uint64_t id = impl_->submit(request);
+  const auto frame = std::find_if(impl_->pending.begin(), impl_->pending.end(),
+                                  [&](const PendingFrame& pending) { return pending.id == id; });
+  return impl_->take(frame);
+}
+
 RenderResult Renderer::render(const RenderRequest& request) {
   const Stopwatch total;
   RenderResult result = renderFrame(request);
   const Stopwatch encode;
-  result.encoded = result.encode(request.output);
+  result.encoded = result.encode();
   result.mimeType = mimeType(request.output.format);
   result.timings.add("encode", TimingRow::Clock::Cpu, encode.elapsedMs());
   result.timings.add("total", TimingRow::Clock::Cpu, total.elapsedMs());
@@ -112,42 +285,5 @@ RenderResult Renderer::render(const RenderRequest& request) {
 }
 
 bool Renderer::healthy() const { return impl_->healthy; }
-
-RenderResult Renderer::renderFrame(const RenderRequest& request) {
-  if (!impl_->healthy) {
-    throw Error(ErrorCode::Unavailable, "this renderer's GL context was lost: make a new one");
-  }
-  // Another Renderer on this thread may have made its own context current since.
-  if (gl::currentApi() != &impl_->context->api()) impl_->context->makeCurrent();
-  FrameReport report;
-  SceneLoadOptions loadOptions;
-  loadOptions.animation = request.sceneOptions.animation;
-  loadOptions.materialVariant = request.sceneOptions.materialVariant;
-  loadOptions.ignoreUnsupportedExtensions = request.settings.ignoreUnsupportedExtensions;
-  loadOptions.textureCompression = request.settings.textureCompression;
-  SceneCache::Lookup lookup = impl_->cache.get(request.scene, loadOptions);
-  report.decide("scene_cache", lookup.hit ? "hit" : "miss");
-  report.timings.add("scene load", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.loadMs);
-  report.timings.add("upload", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.uploadMs);
-  report.warnings = lookup.entry->scene.warnings;
-
-  try {
-    impl_->pipeline.render(request, *lookup.entry, impl_->timer, report);
-  } catch (...) {
-    impl_->timer.discard();
-    impl_->checkContext();  // a lost context explains the failure better than the failure does
-    throw;
-  }
-  impl_->checkContext();
-
-  RenderResult result;
-  result.device = impl_->device;
-  result.sceneCacheHit = lookup.hit;
-  result.image = std::move(report.image);
-  result.timings = std::move(report.timings);
-  result.decisions = std::move(report.decisions);
-  result.warnings = std::move(report.warnings);
-  return result;
-}
 
 }  // namespace lgh

@@ -52,5 +52,13 @@ Command addShadowsCommand(CLI::App& app, const cli::ContextFlags& context);
 Command addHandoffCommand(CLI::App& app, const cli::ContextFlags& context);
 // `lgh-bench gi`: whole GI frames, Tables 2 and 3, Fig. 5, quality (server/bench/gi.cpp).
 Command addGiCommand(CLI::App& app, const cli::ContextFlags& context);
+// `lgh-bench png`: PNG encoders on the demo's display codes (server/bench/png.cpp).
+Command addPngCommand(CLI::App& app, const cli::ContextFlags& context);
+// `lgh-bench scene-load`: scene parsing in this process and in the worker process
+// (server/bench/scene_load.cpp).
+Command addSceneLoadCommand(CLI::App& app, const cli::ContextFlags& context);
+
+// argv[1] of lgh-bench started as scene-load's scene parser worker.
+inline constexpr const char* kSceneWorkerFlag = "--scene-parser-worker";
 
 }  // namespace lgh::bench

@@ -1,11 +1,13 @@
 #include "config.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
 
+#include "lgh/task_pool.hpp"
 #include "version.hpp"
 
 namespace lghd {
@@ -33,7 +35,9 @@ struct RawFlags {
   std::size_t sceneCacheMb = 512;
   std::size_t maxBodyMb = 64;
   int testRenderDelayMs = 0;
+  std::size_t readbackMb = 512;
   std::string authTokenFile;
+  std::string sceneWorker = "on";
   std::size_t jobsMemoryMb = 1024;
   double jobTtlSeconds = 600.0;
   double jobDeadlineSeconds = 600.0;
@@ -49,6 +53,14 @@ void addServerFlags(CLI::App& app, DaemonConfig& config, RawFlags& raw) {
   app.add_option("--port", config.port, "TCP port; 0 picks a free one (printed on stdout)")
       ->envname("LGHD_PORT")
       ->check(CLI::Range(0, 65535))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--metrics-port", config.metricsPort,
+                 "also serve GET /metrics, /healthz and /readyz on this port, without the bearer "
+                 "token (for scrapers that send none); 0 picks a free one (printed on stdout); "
+                 "-1: none")
+      ->envname("LGHD_METRICS_PORT")
+      ->check(CLI::Range(-1, 65535))
       ->capture_default_str()
       ->group(group);
   app.add_option("--http-threads", config.httpThreads,
@@ -113,6 +125,39 @@ void addRenderFlags(CLI::App& app, DaemonConfig& config, RawFlags& raw) {
       ->check(CLI::Range(0.0, 86400.0))
       ->capture_default_str()
       ->group(group);
+  app.add_option("--encode-threads", config.output.encodeThreads,
+                 "threads that encode finished frames (PNG/EXR) while the GPU renders the next "
+                 "ones; 0: one per hardware thread")
+      ->envname("LGHD_ENCODE_THREADS")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--frames-in-flight", config.output.framesInFlight,
+                 "frames between submission to the GPU and the end of their encoding; the render "
+                 "thread waits beyond it. 0: twice the encode threads")
+      ->envname("LGHD_FRAMES_IN_FLIGHT")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--readback-mb", raw.readbackMb,
+                 "memory for the pixels of frames in flight, MiB (a frame larger than this alone "
+                 "still renders, by itself)")
+      ->envname("LGHD_READBACK_MB")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--scene-worker", raw.sceneWorker,
+                 "parse scene assets in a worker process (on), so that a parser crash fails one "
+                 "request, not lghd; or in lghd's own process (off)")
+      ->envname("LGHD_SCENE_WORKER")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--test-scene-worker-crash-marker", config.testSceneWorkerCrashMarker,
+                 "FOR TESTS ONLY: the scene parser worker crashes (SIGSEGV) on assets whose name "
+                 "contains this text")
+      ->envname("LGHD_TEST_SCENE_WORKER_CRASH_MARKER")
+      ->group("Testing");
   app.add_option("--test-render-delay-ms", raw.testRenderDelayMs,
                  "FOR TESTS ONLY: sleep this long on the render thread before each render")
       ->envname("LGHD_TEST_RENDER_DELAY_MS")
@@ -140,7 +185,25 @@ void addLimitFlags(CLI::App& app, Limits& limits, RawFlags& raw) {
       "LGHD_MAX_TRIANGLES");
   add("--max-texture-size", limits.maxTextureSize, "texture width or height, pixels",
       "LGHD_MAX_TEXTURE_SIZE");
+  add("--max-texture-mb", limits.maxTextureMb,
+      "all texture images of one scene, decoded to RGBA8, MiB", "LGHD_MAX_TEXTURE_MB");
   add("--max-batch", limits.maxBatch, "thumbnails in one batch (assets x views)", "LGHD_MAX_BATCH");
+}
+
+void addSceneWorkerLimitFlags(CLI::App& app, DaemonConfig& config) {
+  const char* group = "Limits (413 when exceeded)";
+  app.add_option("--scene-worker-memory-mb", config.sceneWorkerMemoryMb,
+                 "memory of the scene parser worker (its data size), MiB")
+      ->envname("LGHD_SCENE_WORKER_MEMORY_MB")
+      ->check(CLI::Range(std::size_t{256}, std::size_t{1} << 30))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--scene-worker-timeout-seconds", config.sceneWorkerTimeoutSeconds,
+                 "time to parse one asset in the scene parser worker")
+      ->envname("LGHD_SCENE_WORKER_TIMEOUT_SECONDS")
+      ->check(CLI::Range(0.1, 86400.0))
+      ->capture_default_str()
+      ->group(group);
 }
 
 void addJobFlags(CLI::App& app, JobLimits& jobs, RawFlags& raw) {
@@ -219,6 +282,8 @@ void applyRawFlags(const RawFlags& raw, DaemonConfig& config) {
   config.sceneCacheBytes = raw.sceneCacheMb << 20;
   config.limits.maxBodyBytes = raw.maxBodyMb << 20;
   config.testRenderDelay = std::chrono::milliseconds(raw.testRenderDelayMs);
+  config.output.readbackBytes = raw.readbackMb << 20;
+  config.sceneWorker = raw.sceneWorker == "on";
   if (!raw.authTokenFile.empty()) config.authToken = readTokenFile(raw.authTokenFile);
   config.jobs.memoryBytes = raw.jobsMemoryMb << 20;
   config.jobs.ttl = fromSeconds<std::chrono::seconds>(raw.jobTtlSeconds);
@@ -228,11 +293,30 @@ void applyRawFlags(const RawFlags& raw, DaemonConfig& config) {
 
 }  // namespace
 
+int OutputOptions::encoderCount() const {
+  return encodeThreads > 0 ? encodeThreads : lgh::TaskPool::hardwareThreads();
+}
+
+std::size_t OutputOptions::frameLimit() const {
+  return static_cast<std::size_t>(framesInFlight > 0 ? framesInFlight : 2 * encoderCount());
+}
+
 lgh::RendererOptions DaemonConfig::rendererOptions() const {
   lgh::RendererOptions options = lgh::cli::rendererOptions(context);
   options.maxTriangles = limits.maxTriangles;
   options.maxTextureSize = limits.maxTextureSize;
+  options.maxTextureBytes = limits.maxTextureMb << 20;
   options.sceneCacheBytes = sceneCacheBytes;
+  if (sceneWorker) {
+    std::error_code error;
+    options.sceneWorker.executable = std::filesystem::read_symlink("/proc/self/exe", error);
+    options.sceneWorker.arguments = {kSceneWorkerFlag};
+    if (!testSceneWorkerCrashMarker.empty()) {
+      options.sceneWorker.arguments.push_back(testSceneWorkerCrashMarker);
+    }
+    options.sceneWorker.memoryBytes = sceneWorkerMemoryMb << 20;
+    options.sceneWorker.timeoutSeconds = sceneWorkerTimeoutSeconds;
+  }
   return options;
 }
 
@@ -261,6 +345,7 @@ ParsedConfig parseConfig(int argc, char** argv) {
   addContextEnvNames(app);
   addRenderFlags(app, config, raw);
   addLimitFlags(app, config.limits, raw);
+  addSceneWorkerLimitFlags(app, config);
   addJobFlags(app, config.jobs, raw);
   try {
     app.parse(argc, argv);

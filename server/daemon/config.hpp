@@ -25,6 +25,7 @@ struct Limits {
   int maxVpls = 1 << 20;
   std::size_t maxTriangles = 5'000'000;
   int maxTextureSize = 8192;
+  std::size_t maxTextureMb = 2048;  // all textures of one scene, decoded
   int maxBatch = 64;
 };
 
@@ -36,6 +37,17 @@ struct JobLimits {
   std::chrono::seconds ttl{600};            // how long a finished job's status and result stay
   int maxBatch = 4096;  // thumbnails (assets x views) or benchmark renders in one job
   std::chrono::milliseconds renderDeadline{600'000};
+};
+
+// The output pipeline (docs/DAEMON.md, "Frames in flight"): encoder threads, and how many frames
+// (and bytes of their pixels) may be between submission and the end of their encoding.
+struct OutputOptions {
+  int encodeThreads = 0;   // 0: one per hardware thread
+  int framesInFlight = 0;  // 0: twice the encoder threads
+  std::size_t readbackBytes = 512ULL << 20;
+
+  int encoderCount() const;
+  std::size_t frameLimit() const;
 };
 
 struct DaemonConfig {
@@ -50,6 +62,16 @@ struct DaemonConfig {
   std::size_t sceneCacheBytes = 512ULL << 20;
   std::string logFormat = "json";  // json | text
   std::chrono::milliseconds testRenderDelay{0};
+  OutputOptions output;
+  // A second port serving GET /metrics (and the probes) without the bearer token, for scrapers
+  // that carry none (Prometheus' Kubernetes annotations). -1: none.
+  int metricsPort = -1;
+  // Untrusted assets parsed in a worker process (lgh::SceneWorkerOptions); the executable is
+  // this one, started with kSceneWorkerFlag.
+  bool sceneWorker = true;
+  std::size_t sceneWorkerMemoryMb = 4096;
+  double sceneWorkerTimeoutSeconds = 120.0;
+  std::string testSceneWorkerCrashMarker;  // FOR TESTS ONLY
   Limits limits;
   JobLimits jobs;
   std::vector<std::string> corsOrigins;  // empty: no CORS; "*": any origin
@@ -58,6 +80,9 @@ struct DaemonConfig {
   lgh::RendererOptions rendererOptions() const;
   lgh::RequestLimits requestLimits() const;
 };
+
+// argv[1] of lghd started as the scene parser worker (argv[2]: the test crash marker, if any).
+inline constexpr const char* kSceneWorkerFlag = "--scene-parser-worker";
 
 // Parses flags and environment. Returns the configuration, or the process exit code when the
 // command line asked for --help/--version or was wrong (the message is printed already).

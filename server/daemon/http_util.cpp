@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "lgh/request.hpp"
 #include "logging.hpp"
 
 namespace lghd {
@@ -28,11 +29,7 @@ void sendError(httplib::Response& response, const ApiError& error) {
 
 nlohmann::json parseJsonBody(const std::string& body) {
   if (body.empty()) return nlohmann::json::object();
-  try {
-    return nlohmann::json::parse(body);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw badRequest(fmt::format("malformed JSON at byte {}", error.byte));
-  }
+  return lgh::parseRequestJson(body);
 }
 
 Clock::time_point deadlineFor(const httplib::Request& request, const DaemonConfig& config) {

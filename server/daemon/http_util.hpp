@@ -22,7 +22,8 @@ std::string requestIdOf(const httplib::Response& response);
 void sendJson(httplib::Response& response, int status, const nlohmann::json& body);
 void sendError(httplib::Response& response, const ApiError& error);
 
-// The JSON body; an empty body is {}. Throws ApiError 400 naming the byte of a syntax error.
+// The JSON body; an empty body is {}. Throws lgh::Error (lgh::parseRequestJson): 400 naming the
+// byte of a syntax error, 413 past the nesting or value limits of request JSON.
 nlohmann::json parseJsonBody(const std::string& body);
 
 // The request's deadline: now + the configured deadline, or sooner when the client's

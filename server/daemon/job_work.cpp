@@ -54,7 +54,7 @@ auto parsedUnderRequest(Parse parse) {
 }
 
 lgh::RenderResult withoutPixels(lgh::RenderResult result) {
-  result.image = {};  // only the encoded image is answered
+  result.pixels.release();  // only the encoded image is answered
   return result;
 }
 

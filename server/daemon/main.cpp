@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <string_view>
 #include <thread>
 
@@ -15,7 +16,9 @@
 #include "benchmark_runner.hpp"
 #include "config.hpp"
 #include "daemon_context.hpp"
+#include "lgh/scene_worker.hpp"
 #include "logging.hpp"
+#include "metrics_listener.hpp"
 #include "server.hpp"
 #include "shutdown.hpp"
 #include "version.hpp"
@@ -54,6 +57,8 @@ nlohmann::json startupFields(const DaemonConfig& config, int port) {
           {"backend", config.context.backend},
           {"gpu", config.context.gpu},
           {"queue_depth", config.queueDepth},
+          {"encode_threads", config.output.encoderCount()},
+          {"frames_in_flight", config.output.frameLimit()},
           {"deadline_ms", config.deadline.count()},
           {"auth", !config.authToken.empty()}};
 }
@@ -62,13 +67,16 @@ int serve(const DaemonConfig& config) {
   ShutdownSupervisor::blockSignals();
   Metrics metrics;
   RenderQueue queue({config.rendererOptions(), static_cast<std::size_t>(config.queueDepth),
-                     config.testRenderDelay, config.watchdog},
+                     config.testRenderDelay, config.watchdog, config.output},
                     metrics);
   JobStore jobs(config.jobs, queue);
   HttpServer server;
   BenchmarkRunner benchmarks(config.rendererOptions());
   DaemonContext context{config, config.requestLimits(), queue, metrics, jobs, &benchmarks};
   configureServer(server, context);
+  server.setRejectionListener([&metrics](const FramedServer::Rejection& rejection) {
+    metrics.recordRequest("other", "", rejection.error.status, 0.0);
+  });
 
   const int port = bindServer(server, config.host, config.port);
   if (port < 0) {
@@ -78,6 +86,18 @@ int serve(const DaemonConfig& config) {
   }
   std::cout << "listening on " << config.host << ":" << port << std::endl;
   logging::event(spdlog::level::info, "listening", startupFields(config, port));
+  std::optional<MetricsListener> metricsListener;
+  if (config.metricsPort >= 0) {
+    metricsListener.emplace(context);
+    const int metricsPort = metricsListener->start(config.host, config.metricsPort);
+    if (metricsPort < 0) {
+      logging::event(spdlog::level::critical, "bind_failed",
+                     {{"host", config.host}, {"port", config.metricsPort}, {"for", "metrics"}});
+      return 1;
+    }
+    std::cout << "metrics on " << config.host << ":" << metricsPort << std::endl;
+    logging::event(spdlog::level::info, "metrics_listening", {{"port", metricsPort}});
+  }
 
   std::atomic<bool> listenReturned = false;
   ShutdownSupervisor supervisor;
@@ -115,6 +135,10 @@ int main(int argc, char** argv) {
   }
   if (argc == 4 && std::string_view(argv[1]) == lghd::kRunBenchmarkFlag) {
     return lghd::runBenchmarkChild(argv[2], argv[3]);
+  }
+  if (argc >= 2 && argc <= 3 && std::string_view(argv[1]) == lghd::kSceneWorkerFlag) {
+    lghd::logging::setUp("warn", "json");
+    return lgh::runSceneParserWorker(lgh::kSceneWorkerFd, argc == 3 ? argv[2] : "");
   }
   lghd::ParsedConfig parsed = lghd::parseConfig(argc, argv);
   if (!parsed.config) return parsed.exitCode;

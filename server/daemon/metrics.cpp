@@ -102,6 +102,7 @@ void Metrics::recordRenderTimes(const lgh::TimingTable& timings, double queueSec
   std::lock_guard lock(mutex_);
   queueWaitSeconds_.observe(queueSeconds);
   for (const lgh::TimingRow& row : timings.rows) {
+    if (row.name == "queue") continue;  // lghd_queue_wait_seconds
     if (row.name == "total") {
       entry(renderSeconds_, cacheHit ? "scene_cache=\"hit\"" : "scene_cache=\"miss\"",
             kLatencyBuckets)
@@ -118,6 +119,14 @@ void Metrics::recordRenderTimes(const lgh::TimingTable& timings, double queueSec
 void Metrics::recordShadows(const std::string& shadows) {
   std::lock_guard lock(mutex_);
   ++shadows_[fmt::format("shadows=\"{}\"", escapeLabel(shadows))];
+}
+
+void Metrics::recordEncode(std::string_view format, double waitSeconds, double encodeSeconds) {
+  std::lock_guard lock(mutex_);
+  encodeWaitSeconds_.observe(waitSeconds);
+  entry(encodeSeconds_, fmt::format("format=\"{}\"", escapeLabel(std::string(format))),
+        kPassBuckets)
+      .observe(encodeSeconds);
 }
 
 void Metrics::recordThumbnail(const std::string& status) {
@@ -167,6 +176,16 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
   gauge(out, "lghd_gpu_memory_total_bytes",
         "GPU memory in all (GL_NVX_gpu_memory_info); -1 where the driver does not say.",
         bytesOrUnknown(gauges.resources.gpuMemoryTotalKiB));
+  gauge(out, "lghd_frames_in_flight",
+        "Frames between submission to the GPU and the end of their encoding.",
+        static_cast<double>(gauges.framesInFlight));
+  gauge(out, "lghd_frames_in_flight_limit", "--frames-in-flight: the render thread waits beyond.",
+        static_cast<double>(gauges.frameLimit));
+  gauge(out, "lghd_encode_threads", "Threads encoding finished frames (--encode-threads).",
+        static_cast<double>(gauges.encodeThreads));
+  gauge(out, "lghd_readback_bytes",
+        "Read-back memory held by frames in flight (their pixels, until encoded).",
+        static_cast<double>(gauges.readbackBytes));
 
   std::lock_guard lock(mutex_);
   header(out, "lghd_http_requests_total", "counter",
@@ -179,8 +198,10 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
          "Renders by outcome: ok, error, timeout (finished after its deadline, discarded), "
          "skipped (deadline passed or cancelled before it started).");
   counterLines(out, "lghd_renders_total", renders_);
-  header(out, "lghd_render_duration_seconds", "histogram",
-         "Render time on the render thread (scene load to encoded image), by scene-cache result.");
+  header(
+      out, "lghd_render_duration_seconds", "histogram",
+      "Render time from the render thread taking the request to its encoded image (the \"total\" "
+      "row), by scene-cache result.");
   histogramLines(out, "lghd_render_duration_seconds", renderSeconds_);
   header(out, "lghd_render_pass_seconds", "histogram",
          "Time of each pass of a render: clock=gpu from timer queries, clock=cpu from a steady "
@@ -188,6 +209,12 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
   histogramLines(out, "lghd_render_pass_seconds", passSeconds_);
   header(out, "lghd_queue_wait_seconds", "histogram", "Time renders waited in the queue.");
   queueWaitSeconds_.write(out, "lghd_queue_wait_seconds", "");
+  header(out, "lghd_encode_seconds", "histogram",
+         "Time an encoder thread took to encode a frame, by output format.");
+  histogramLines(out, "lghd_encode_seconds", encodeSeconds_);
+  header(out, "lghd_encode_wait_seconds", "histogram",
+         "Time finished frames waited for an encoder thread.");
+  encodeWaitSeconds_.write(out, "lghd_encode_wait_seconds", "");
   header(out, "lghd_thumbnails_total", "counter", "Thumbnails rendered in batches, by status.");
   counterLines(out, "lghd_thumbnails_total", thumbnails_);
   header(out, "lghd_render_shadows_total", "counter",

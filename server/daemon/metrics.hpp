@@ -7,6 +7,7 @@
 #include <map>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "lgh/resource_stats.hpp"
@@ -42,6 +43,12 @@ struct RuntimeGauges {
   // The shadow side: 1 ready, 0 unavailable, -1 no frame has asked for shadows yet.
   int shadowTracer = -1;
   lgh::ResourceStats resources;  // live GL objects and GPU memory, as of the last render
+  // The output pipeline: frames between submission and the end of their encoding, their limit,
+  // the encoder threads, and the read-back memory frames hold.
+  std::size_t framesInFlight = 0;
+  std::size_t frameLimit = 0;
+  std::size_t encodeThreads = 0;
+  std::size_t readbackBytes = 0;
 };
 
 class Metrics {
@@ -56,6 +63,9 @@ class Metrics {
   // How a render's shadows were made (its decision "shadows": ray-query, pipeline, none, off).
   void recordShadows(const std::string& shadows);
   void recordThumbnail(const std::string& status);
+  // One frame encoded on an encoder thread: its wait for one (from read-back to the start of its
+  // encoding) and the encoding itself, by output format (png, exr-half, exr-float).
+  void recordEncode(std::string_view format, double waitSeconds, double encodeSeconds);
 
   std::string exposition(const RuntimeGauges& gauges) const;
 
@@ -70,6 +80,9 @@ class Metrics {
   Histogram queueWaitSeconds_{{0.001, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 2.5, 5, 10, 30}};
   std::map<Labels, std::uint64_t> thumbnails_;  // status
   std::map<Labels, std::uint64_t> shadows_;     // shadows
+  std::map<Labels, Histogram> encodeSeconds_;   // format
+  Histogram encodeWaitSeconds_{
+      {0.0001, 0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 2.5}};
 };
 
 // `value` escaped for a label value: backslash, double quote and newline.

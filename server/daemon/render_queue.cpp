@@ -168,6 +168,11 @@ RuntimeGauges RenderQueue::gauges() const {
   gauges.sceneCacheBytes = cacheStats_.bytes;
   gauges.sceneCacheBudgetBytes = options_.renderer.sceneCacheBytes;
   gauges.resources = resources_;
+  gauges.framesInFlight = framesOutstanding_;
+  gauges.frameLimit = options_.output.frameLimit();
+  gauges.encodeThreads = static_cast<std::size_t>(options_.output.encoderCount());
+  // Live: frames give their read-back memory back on encoder threads, after the last publish.
+  gauges.readbackBytes = renderer_ ? renderer_->readbackStats().heldBytes : 0;
   gauges.shadowTracer = shadowInfo_.status == "ready"         ? 1
                         : shadowInfo_.status == "unavailable" ? 0
                                                               : -1;
@@ -189,12 +194,13 @@ void RenderQueue::failAll(RenderJob& job, const ApiError& error) {
 bool RenderQueue::drain(Clock::duration grace) {
   std::unique_lock lock(mutex_);
   if (state_ == State::Failed) return jobs_.empty() && !current_;  // nothing left can finish
-  const bool idle =
-      idleCondition_.wait_for(lock, grace, [this] { return jobs_.empty() && !current_; });
+  const bool idle = idleCondition_.wait_for(
+      lock, grace, [this] { return jobs_.empty() && !current_ && framesOutstanding_ == 0; });
   if (idle) return true;
   const ApiError cancelled = unavailable("the daemon is shutting down: render cancelled");
   logging::event(spdlog::level::warn, "drain_timeout",
-                 {{"cancelled_jobs", jobs_.size() + (current_ ? 1 : 0)}});
+                 {{"cancelled_jobs", jobs_.size() + (current_ ? 1 : 0)},
+                  {"frames_in_flight", framesOutstanding_}});
   for (const auto& job : jobs_) failAll(*job, cancelled);
   jobs_.clear();
   if (current_) failAll(*current_, cancelled);
@@ -225,11 +231,12 @@ void RenderQueue::run() {
   releaseVulkanProbe();
   if (up) {
     while (std::shared_ptr<RenderJob> job = takeJob()) {
-      runJob(*job);
+      runJob(job);
       finishJob();
     }
+    settleFramesInFlight();
   }
-  renderer_.reset();  // the context is destroyed on the thread that made it
+  releaseRenderer();  // the context is destroyed on the thread that made it
   std::lock_guard lock(mutex_);
   threadDone_ = true;
   idleCondition_.notify_all();
@@ -238,14 +245,16 @@ void RenderQueue::run() {
 bool RenderQueue::bringUpRenderer() {
   const auto start = Clock::now();
   armWatchdog(start + kStartUpAllowance + options_.watchdog);
+  if (!encoders_) encoders_ = std::make_unique<lgh::TaskPool>(options_.output.encoderCount());
   try {
-    renderer_ = std::make_unique<lgh::Renderer>(options_.renderer);
-    const lgh::RenderResult selfTest = renderer_->render(selfTestRequest());
+    auto renderer = std::make_unique<lgh::Renderer>(options_.renderer);
+    const lgh::RenderResult selfTest = renderer->render(selfTestRequest());
     if (selfTest.encoded.empty()) throw internalError("the self-test render produced no image");
     disarmWatchdog();
+    std::lock_guard lock(mutex_);
+    renderer_ = std::move(renderer);
   } catch (const std::exception& error) {
     disarmWatchdog();
-    renderer_.reset();
     {
       std::lock_guard lock(mutex_);
       state_ = State::Failed;
@@ -267,10 +276,14 @@ bool RenderQueue::bringUpRenderer() {
   return true;
 }
 
-// After a GL failure the context may be broken: replace it rather than serve from it.
+// After a GL failure the context may be broken: replace it rather than serve from it. The frames
+// in flight on it fail, and the encoders finish reading pixels from its read-back memory first.
 void RenderQueue::recoverRenderer(const std::string& reason) {
   logging::event(spdlog::level::err, "renderer_reset", {{"reason", reason}});
-  renderer_.reset();
+  failFramesInFlight(
+      internalError("the GL context failed while this frame was in flight: " + reason));
+  encoders_->waitIdle();
+  releaseRenderer();
   {
     std::lock_guard lock(mutex_);
     state_ = State::Starting;
@@ -278,13 +291,25 @@ void RenderQueue::recoverRenderer(const std::string& reason) {
   bringUpRenderer();
 }
 
+// The next job; while none waits and frames are in flight, those are finished and handed to the
+// encoders instead of sleeping.
 std::shared_ptr<RenderJob> RenderQueue::takeJob() {
-  std::unique_lock lock(mutex_);
-  workCondition_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });
-  if (stopping_ || state_ == State::Failed) return nullptr;
-  current_ = std::move(jobs_.front());
-  jobs_.pop_front();
-  return current_;
+  for (;;) {
+    {
+      std::unique_lock lock(mutex_);
+      if (submitted_.empty()) {
+        workCondition_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });
+      }
+      if (stopping_ || state_ == State::Failed) return nullptr;
+      if (!jobs_.empty()) {
+        current_ = std::move(jobs_.front());
+        jobs_.pop_front();
+        return current_;
+      }
+    }
+    completeFrame(true);
+    if (!renderer_) return nullptr;  // recovery failed: the daemon is going down
+  }
 }
 
 void RenderQueue::finishJob() {
@@ -293,51 +318,74 @@ void RenderQueue::finishJob() {
   idleCondition_.notify_all();
 }
 
-void RenderQueue::runJob(RenderJob& job) {
-  if (Clock::now() > job.startDeadline) {
-    failAll(job, timedOut("the render waited in the queue past its deadline"));
-    for (std::size_t i = 0; i < job.tickets.size(); ++i) metrics_.recordRender("skipped");
-    logging::event(spdlog::level::warn, "job_expired_in_queue", {{"request_id", job.requestId}});
+const lgh::RenderRequest* RenderQueue::nextRequest(const RenderJob& job, std::size_t index) {
+  if (index + 1 < job.tickets.size()) return &job.tickets[index + 1]->request();
+  std::lock_guard lock(mutex_);
+  // Tickets never change once queued, and the job stays alive in the queue while it is read.
+  if (!jobs_.empty() && !jobs_.front()->tickets.empty()) {
+    return &jobs_.front()->tickets.front()->request();
+  }
+  return nullptr;
+}
+
+void RenderQueue::runJob(const std::shared_ptr<RenderJob>& job) {
+  if (Clock::now() > job->startDeadline) {
+    failAll(*job, timedOut("the render waited in the queue past its deadline"));
+    for (std::size_t i = 0; i < job->tickets.size(); ++i) metrics_.recordRender("skipped");
+    logging::event(spdlog::level::warn, "job_expired_in_queue", {{"request_id", job->requestId}});
     return;
   }
-  for (const auto& ticket : job.tickets) {
-    if (job.cancelled) ticket->fail(unavailable("the batch was cancelled"));
+  for (std::size_t i = 0; i < job->tickets.size(); ++i) {
+    const std::shared_ptr<RenderTicket>& ticket = job->tickets[i];
+    if (job->cancelled) ticket->fail(unavailable("the batch was cancelled"));
     if (ticket->settled()) {  // its waiter gave up (deadline) or the job was cancelled
       metrics_.recordRender("skipped");
       continue;
     }
-    renderTicket(job, *ticket);
+    submitTicket(job, ticket, nextRequest(*job, i));
     if (!renderer_) {  // recovery failed: the daemon is going down
-      failAll(job, unavailable("no working GL context"));
+      failAll(*job, unavailable("no working GL context"));
       return;
+    }
+    while (completeFrame(false)) {
     }
   }
 }
 
-void RenderQueue::renderTicket(const RenderJob& job, RenderTicket& ticket) {
-  ticket.markStarted();
+// --- Frames in flight ---------------------------------------------------------------------------
+
+namespace {
+
+std::size_t frameBytes(const lgh::RenderRequest& request) {
+  const lgh::FramePixels shape{request.output.width, request.output.height,
+                               lgh::pixelLayoutFor(request.output), nullptr};
+  return shape.size();
+}
+
+}  // namespace
+
+void RenderQueue::submitTicket(const std::shared_ptr<RenderJob>& job,
+                               const std::shared_ptr<RenderTicket>& ticket,
+                               const lgh::RenderRequest* next) {
+  const std::size_t bytes = frameBytes(ticket->request());
+  waitForFrameCapacity(bytes);
+  if (!renderer_) return;
+  ticket->markStarted();
   const auto start = Clock::now();
-  armWatchdog(job.startDeadline + options_.watchdog);
+  armWatchdog(job->startDeadline + options_.watchdog);
   if (options_.testRenderDelay.count() > 0) std::this_thread::sleep_for(options_.testRenderDelay);
   try {
-    lgh::RenderResult result = renderer_->render(ticket.request());
+    // The next scene is parsed while this one uploads and renders.
+    if (next != nullptr) renderer_->prefetch(*next);
+    renderer_->submit(ticket->request());
     disarmWatchdog();
-    publishRendererState();
-    metrics_.recordRenderTimes(result.timings, secondsBetween(job.enqueued, start),
-                               result.sceneCacheHit);
-    if (const auto shadows = result.decisions.find("shadows"); shadows != result.decisions.end()) {
-      metrics_.recordShadows(shadows->second);
-    }
-    if (ticket.complete(std::move(result))) {
-      metrics_.recordRender("ok");
-    } else {
-      metrics_.recordRender("timeout");
-      logging::event(spdlog::level::warn, "render_discarded",
-                     {{"request_id", job.requestId}, {"render_ms", millisecondsSince(start)}});
-    }
+    submitted_.push_back({job, ticket, start, start, bytes});
+    std::lock_guard lock(mutex_);
+    ++framesOutstanding_;
+    bytesOutstanding_ += bytes;
   } catch (const lgh::Error& error) {
     disarmWatchdog();
-    ticket.fail(fromLghError(error));
+    ticket->fail(fromLghError(error));
     metrics_.recordRender("error");
     // A GL failure may have broken the context, and a lost one (GPU reset) certainly has.
     if (error.code() == lgh::ErrorCode::Internal || !renderer_->healthy()) {
@@ -345,13 +393,129 @@ void RenderQueue::renderTicket(const RenderJob& job, RenderTicket& ticket) {
     }
   } catch (const std::exception& error) {
     disarmWatchdog();
-    ticket.fail(internalError(error.what()));
+    ticket->fail(internalError(error.what()));
     metrics_.recordRender("error");
     recoverRenderer(error.what());
   }
-  std::lock_guard lock(mutex_);
-  const double seconds = secondsSince(start);
-  averageRenderSeconds_ = 0.8 * averageRenderSeconds_ + 0.2 * seconds;
+}
+
+void RenderQueue::waitForFrameCapacity(std::size_t bytes) {
+  const std::size_t frameLimit = options_.output.frameLimit();
+  const std::size_t byteLimit = options_.output.readbackBytes;
+  const auto fits = [&] {
+    return framesOutstanding_ == 0 ||
+           (framesOutstanding_ < frameLimit && bytesOutstanding_ + bytes <= byteLimit);
+  };
+  for (;;) {
+    {
+      std::unique_lock lock(mutex_);
+      if (fits()) return;
+      if (submitted_.empty()) {  // only the encoders can make room
+        frameDoneCondition_.wait(lock, fits);
+        return;
+      }
+    }
+    completeFrame(true);
+    if (!renderer_) return;
+  }
+}
+
+bool RenderQueue::completeFrame(bool wait) {
+  if (submitted_.empty() || !renderer_) return false;
+  std::optional<lgh::RenderResult> result;
+  armWatchdog(submitted_.front().job->startDeadline + options_.watchdog);
+  try {
+    result = renderer_->finish(wait);
+    disarmWatchdog();
+  } catch (const std::exception& error) {
+    disarmWatchdog();
+    recoverRenderer(error.what());
+    return false;
+  }
+  if (!result) return false;
+  FrameInFlight frame = std::move(submitted_.front());
+  submitted_.pop_front();
+  frame.finished = Clock::now();
+  publishRendererState();
+  encoders_->submit([this, frame = std::move(frame), result = std::move(*result)]() mutable {
+    encode(frame, result);
+  });
+  return true;
+}
+
+void RenderQueue::encode(FrameInFlight& frame, lgh::RenderResult& result) {
+  RenderTicket& ticket = *frame.ticket;
+  const auto encodeStart = Clock::now();
+  const double queueMs = millisecondsBetween(frame.job->enqueued, frame.started);
+  const double waitMs = millisecondsBetween(frame.finished, encodeStart);
+  auto& rows = result.timings.rows;
+  rows.insert(rows.begin(), lgh::TimingRow{"queue", lgh::TimingRow::Clock::Cpu, queueMs, 0});
+  result.timings.add("encode wait", lgh::TimingRow::Clock::Cpu, waitMs);
+  bool failed = false;
+  bool encoded = false;
+  // A ticket settled already (its waiter's deadline, a cancel, the shutdown) is not encoded.
+  if (!ticket.settled()) {
+    try {
+      result.encoded = result.encode(encoders_.get());
+      result.mimeType = lgh::mimeType(result.output.format);
+      encoded = true;
+    } catch (const std::exception& error) {
+      failed = true;
+      ticket.fail(internalError(std::string("encoding failed: ") + error.what()));
+    }
+  }
+  result.pixels.release();  // back to the renderer's read-back memory
+  const double encodeSeconds = secondsSince(encodeStart);
+  result.timings.add("encode", lgh::TimingRow::Clock::Cpu, encodeSeconds * 1000.0);
+  result.timings.add("total", lgh::TimingRow::Clock::Cpu, millisecondsSince(frame.started));
+  if (encoded) {
+    metrics_.recordEncode(lgh::enumName(result.output.format), waitMs / 1000.0, encodeSeconds);
+  }
+  metrics_.recordRenderTimes(result.timings, queueMs / 1000.0, result.sceneCacheHit);
+  if (const auto shadows = result.decisions.find("shadows"); shadows != result.decisions.end()) {
+    metrics_.recordShadows(shadows->second);
+  }
+  if (failed) {
+    metrics_.recordRender("error");
+  } else if (ticket.complete(std::move(result))) {
+    metrics_.recordRender("ok");
+  } else {
+    metrics_.recordRender("timeout");
+    logging::event(
+        spdlog::level::warn, "render_discarded",
+        {{"request_id", frame.job->requestId}, {"render_ms", millisecondsSince(frame.started)}});
+  }
+  frameDone(frame, secondsSince(frame.started));
+}
+
+void RenderQueue::frameDone(const FrameInFlight& frame, double seconds) {
+  {
+    std::lock_guard lock(mutex_);
+    --framesOutstanding_;
+    bytesOutstanding_ -= frame.bytes;
+    if (seconds > 0.0) averageRenderSeconds_ = 0.8 * averageRenderSeconds_ + 0.2 * seconds;
+  }
+  frameDoneCondition_.notify_all();
+  idleCondition_.notify_all();
+}
+
+void RenderQueue::failFramesInFlight(const ApiError& error) {
+  while (!submitted_.empty()) {
+    FrameInFlight frame = std::move(submitted_.front());
+    submitted_.pop_front();
+    frame.ticket->fail(error);
+    metrics_.recordRender("error");
+    frameDone(frame, 0.0);
+  }
+}
+
+// At the end: the frames in flight finish and are encoded (or dropped, when their tickets were
+// settled by the shutdown), before the renderer and its read-back memory go.
+void RenderQueue::settleFramesInFlight() {
+  while (completeFrame(true)) {
+  }
+  if (!submitted_.empty()) failFramesInFlight(unavailable("the daemon is shutting down"));
+  if (encoders_) encoders_->waitIdle();
 }
 
 // --- The watchdog -------------------------------------------------------------------------------
@@ -405,6 +569,12 @@ void RenderQueue::publishRendererState() {
 lgh::ResourceStats RenderQueue::resources() const {
   std::lock_guard lock(mutex_);
   return resources_;
+}
+
+// Under mutex_, so that gauges() may read the renderer's read-back memory from HTTP threads.
+void RenderQueue::releaseRenderer() {
+  std::lock_guard lock(mutex_);
+  renderer_.reset();
 }
 
 lgh::ShadowInfo RenderQueue::shadows() const {

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "capped_header.hpp"
 #include "http_util.hpp"
 #include "lgh/base64.hpp"
 
@@ -20,10 +21,14 @@ std::string timingToken(const std::string& name) {
   return token;
 }
 
+// The queue wait first: the render queue's "queue" row when the table has one (it is its first
+// row), else `queueMs`.
 std::string serverTiming(const lgh::TimingTable& timings, double queueMs) {
-  std::string header = fmt::format("queue;dur={:.3f}", queueMs);
+  std::string header;
+  if (timings.get("queue") < 0.0) header = fmt::format("queue;dur={:.3f}", queueMs);
   for (const lgh::TimingRow& row : timings.rows) {
-    header += fmt::format(", {};dur={:.3f};desc=\"{}\"", timingToken(row.name), row.milliseconds,
+    if (!header.empty()) header += ", ";
+    header += fmt::format("{};dur={:.3f};desc=\"{}\"", timingToken(row.name), row.milliseconds,
                           row.clock == lgh::TimingRow::Clock::Gpu ? "gpu" : "cpu");
   }
   return header;
@@ -40,8 +45,9 @@ void setRenderHeaders(httplib::Response& response, const RenderAnswer& answer) {
   response.set_header("X-Lgh-Cache", result.sceneCacheHit ? "hit" : "miss");
   response.set_header("X-Lgh-Queue-Ms", fmt::format("{:.3f}", answer.queueMs));
   response.set_header("X-Lgh-Render-Ms", fmt::format("{:.3f}", result.timings.get("total")));
-  response.set_header("X-Lgh-Paths", headerJson(result.decisions));
-  response.set_header("X-Lgh-Warnings", headerJson(result.warnings));
+  // Both can grow with the client's scene: capped (capped_header.hpp).
+  response.set_header("X-Lgh-Paths", cappedJsonObject(result.decisions, kPathsHeaderBytes));
+  response.set_header("X-Lgh-Warnings", cappedJsonArray(result.warnings, kWarningsHeaderBytes));
 }
 
 nlohmann::json renderResponseJson(const RenderAnswer& answer) {

@@ -15,6 +15,8 @@ void addThumbnailRoutes(httplib::Server& server, DaemonContext& context);
 void addJobRoutes(httplib::Server& server, DaemonContext& context);
 // GET /healthz, /readyz, /v1/info, /metrics
 void addStatusRoutes(httplib::Server& server, DaemonContext& context);
+// GET /healthz, /readyz, /metrics only (the --metrics-port listener)
+void addScrapeRoutes(httplib::Server& server, DaemonContext& context);
 // GET /openapi.json and the JSON Schemas it references
 void addDocumentRoutes(httplib::Server& server);
 // POST /v1/benchmark, GET /v1/benchmark, GET /v1/benchmark/result (routes_benchmark.cpp)

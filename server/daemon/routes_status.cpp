@@ -76,7 +76,7 @@ json infoJson(const DaemonContext& context) {
 
 }  // namespace
 
-void addStatusRoutes(httplib::Server& server, DaemonContext& context) {
+void addScrapeRoutes(httplib::Server& server, DaemonContext& context) {
   server.Get("/healthz", [](const httplib::Request&, httplib::Response& response) {
     sendJson(response, 200, {{"status", "ok"}});
   });
@@ -88,14 +88,18 @@ void addStatusRoutes(httplib::Server& server, DaemonContext& context) {
       sendError(response, unavailable(reason));
     }
   });
-  server.Get("/v1/info", guarded([&context](const httplib::Request&, httplib::Response& response) {
-               sendJson(response, 200, infoJson(context));
-             }));
   server.Get("/metrics", [&context](const httplib::Request&, httplib::Response& response) {
     response.set_content(context.metrics.exposition(context.queue.gauges()) +
                              context.jobs.exposition() + processMetricsExposition(),
                          "text/plain; version=0.0.4; charset=utf-8");
   });
+}
+
+void addStatusRoutes(httplib::Server& server, DaemonContext& context) {
+  addScrapeRoutes(server, context);
+  server.Get("/v1/info", guarded([&context](const httplib::Request&, httplib::Response& response) {
+               sendJson(response, 200, infoJson(context));
+             }));
 }
 
 void addDocumentRoutes(httplib::Server& server) {

@@ -115,8 +115,8 @@ json outcomeLine(const BatchRun& run, std::size_t i, const BatchRun::Outcome& ou
   const lgh::RenderResult& result = *outcome.result;
   line["status"] = "ok";
   line["mime"] = result.mimeType;
-  line["width"] = result.image.width;
-  line["height"] = result.image.height;
+  line["width"] = result.output.width;
+  line["height"] = result.output.height;
   line["scene_cache"] = result.sceneCacheHit ? "hit" : "miss";
   line["timings"] = result.timings.toJson();
   line["warnings"] = result.warnings;

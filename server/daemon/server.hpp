@@ -7,13 +7,15 @@
 #include <httplib.h>
 
 #include "daemon_context.hpp"
+#include "framed_server.hpp"
 
 namespace lghd {
 
 // httplib listens with a backlog of 5 (a constant compiled into Debian's library). A burst of
 // clients overflows that queue, and the kernel then drops their handshakes or resets them after
-// they sent their request. Listening again on the bound socket raises the backlog.
-class HttpServer : public httplib::Server {
+// they sent their request. Listening again on the bound socket raises the backlog. Requests are
+// read off their connections by FramedServer, which checks their framing first.
+class HttpServer : public FramedServer {
  public:
   bool raiseListenBacklog(int backlog);
 };

@@ -52,9 +52,10 @@ nlohmann::json requestPartJson(const httplib::Request& request) {
   const std::string text = request.get_file_value("request").content;
   nlohmann::json json;
   try {
-    json = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw badRequest(fmt::format("malformed JSON at byte {}", error.byte), "request");
+    json = lgh::parseRequestJson(text);
+  } catch (const lgh::Error& error) {
+    const ApiError answer = fromLghError(error);
+    throw ApiError(answer.status(), answer.code(), answer.message(), "request");
   }
   if (!json.is_object()) throw badRequest("the request part must be a JSON object", "request");
   return json;

@@ -117,6 +117,13 @@ TEST_F(DaemonConfigTest, DefaultsReachTheRendererAndTheRequestLimits) {
   EXPECT_EQ(renderer.maxTriangles, 5'000'000U);
   EXPECT_EQ(renderer.maxTextureSize, 8192);
   EXPECT_EQ(renderer.sceneCacheBytes, 512ULL << 20);
+  EXPECT_EQ(renderer.maxTextureBytes, 2048ULL << 20);
+  // Untrusted assets are parsed in a worker: this very executable, in worker mode.
+  EXPECT_EQ(renderer.sceneWorker.executable, std::filesystem::read_symlink("/proc/self/exe"));
+  EXPECT_EQ(renderer.sceneWorker.arguments, std::vector<std::string>{kSceneWorkerFlag});
+  EXPECT_EQ(renderer.sceneWorker.memoryBytes, 4096ULL << 20);
+  EXPECT_EQ(renderer.sceneWorker.timeoutSeconds, 120.0);
+  EXPECT_EQ(parsed.result.config->metricsPort, -1);
   const lgh::RequestLimits limits = parsed.result.config->requestLimits();
   EXPECT_EQ(limits.maxWidth, 4096);
   EXPECT_EQ(limits.maxHeight, 4096);
@@ -148,6 +155,11 @@ TEST_F(DaemonConfigTest, GoodFlagsInDaemonUnits) {
       {"--max-triangles", "12345"},
       {"--max-texture-size", "1024"},
       {"--max-batch", "5"},
+      {"--max-texture-mb", "100"},
+      {"--metrics-port", "9090"},
+      {"--scene-worker-memory-mb", "512"},
+      {"--scene-worker-timeout-seconds", "2.5"},
+      {"--test-scene-worker-crash-marker", "boom"},
       {"--backend", "surfaceless"},
       {"--gpu", "1"},
       {"--asset-root", "/srv/assets"},
@@ -189,6 +201,11 @@ TEST_F(DaemonConfigTest, GoodFlagsInDaemonUnits) {
   EXPECT_EQ(renderer.maxTriangles, 12345U);
   EXPECT_EQ(renderer.maxTextureSize, 1024);
   EXPECT_EQ(renderer.sceneCacheBytes, 64ULL << 20);
+  EXPECT_EQ(renderer.maxTextureBytes, 100ULL << 20);
+  EXPECT_EQ(config.metricsPort, 9090);
+  EXPECT_EQ(renderer.sceneWorker.memoryBytes, 512ULL << 20);
+  EXPECT_EQ(renderer.sceneWorker.timeoutSeconds, 2.5);
+  EXPECT_EQ(renderer.sceneWorker.arguments, (std::vector<std::string>{kSceneWorkerFlag, "boom"}));
   const lgh::RequestLimits limits = config.requestLimits();
   EXPECT_EQ(limits.maxWidth, 800);
   EXPECT_EQ(limits.maxHeight, 600);
@@ -196,6 +213,14 @@ TEST_F(DaemonConfigTest, GoodFlagsInDaemonUnits) {
   EXPECT_EQ(limits.maxLights, 10);
   EXPECT_EQ(limits.maxVpls, 1000);
   EXPECT_EQ(limits.maxInlineGlbBytes, 2ULL << 20);
+}
+
+TEST_F(DaemonConfigTest, SceneWorkerOffParsesInTheDaemon) {
+  const Parsed parsed = parse({"--scene-worker", "off"});
+  ASSERT_TRUE(parsed.result.config) << parsed.err;
+  EXPECT_TRUE(parsed.result.config->rendererOptions().sceneWorker.executable.empty());
+  EXPECT_FALSE(parse({"--scene-worker", "maybe"}).result.config);
+  EXPECT_FALSE(parse({"--scene-worker-memory-mb", "16"}).result.config) << "below 256";
 }
 
 TEST_F(DaemonConfigTest, EnvironmentVariables) {

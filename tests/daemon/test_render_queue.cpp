@@ -130,9 +130,11 @@ class RenderQueueTest : public testing::Test {
     return fatalExitCode_;
   }
 
+  // Nothing queued, rendering or in flight: the encoders have settled every ticket and counted
+  // its outcome (a waiter wakes before its encoder has counted it).
   bool idle() const {
     const RuntimeGauges gauges = queue_->gauges();
-    return gauges.queueDepth == 0 && !gauges.rendering;
+    return gauges.queueDepth == 0 && !gauges.rendering && gauges.framesInFlight == 0;
   }
 
   Metrics metrics_;  // outlives the queue
@@ -171,8 +173,8 @@ TEST_F(RenderQueueTest, RendersOnceReady) {
   EXPECT_EQ(job->requestId, "req-1");
   ASSERT_EQ(job->tickets.size(), 1U);
   const lgh::RenderResult result = job->tickets[0]->wait(farDeadline());
-  EXPECT_EQ(result.image.width, 48);
-  EXPECT_EQ(result.image.height, 32);
+  EXPECT_EQ(result.output.width, 48);
+  EXPECT_EQ(result.output.height, 32);
   ASSERT_GE(result.encoded.size(), 8U);
   EXPECT_EQ(result.encoded[1], 'P');
   EXPECT_EQ(result.encoded[2], 'N');

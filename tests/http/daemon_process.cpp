@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -147,6 +148,15 @@ DaemonProcess::DaemonProcess(std::vector<std::string> args, const std::vector<st
     throw std::runtime_error("lghd did not report its port (got '" + line + "'):\n" + log());
   }
   port_ = std::stoi(line.substr(prefix.size()));
+  if (std::find(args.begin(), args.end(), "--metrics-port") != args.end()) {
+    const std::string metrics = readLine(stdoutFd_, std::chrono::seconds(60));
+    const std::string metricsPrefix = "metrics on 127.0.0.1:";
+    if (!metrics.starts_with(metricsPrefix)) {
+      stop(SIGKILL, std::chrono::seconds(5));
+      throw std::runtime_error("lghd did not report its metrics port (got '" + metrics + "')");
+    }
+    metricsPort_ = std::stoi(metrics.substr(metricsPrefix.size()));
+  }
   waitUntilReady();
 }
 

@@ -41,6 +41,8 @@ class DaemonProcess {
   DaemonProcess& operator=(const DaemonProcess&) = delete;
 
   int port() const { return port_; }
+  // The --metrics-port listener's port (its second stdout line); -1 without one.
+  int metricsPort() const { return metricsPort_; }
   pid_t pid() const { return pid_; }
   std::unique_ptr<httplib::Client> client(
       std::chrono::seconds readTimeout = std::chrono::seconds(60)) const;
@@ -58,6 +60,7 @@ class DaemonProcess {
 
   pid_t pid_ = -1;
   int port_ = 0;
+  int metricsPort_ = -1;
   int stdoutFd_ = -1;
   std::filesystem::path logPath_;
   std::optional<int> exitStatus_;

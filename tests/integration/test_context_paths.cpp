@@ -47,6 +47,13 @@ double largestRelativeDifference(const lgh::FloatImage& a, const lgh::FloatImage
   return largest;
 }
 
+// The linear pixels of `request` (rendered as exr-float whatever it asks for).
+lgh::FloatImage linearImage(lgh::Renderer& renderer, const std::string& json) {
+  lgh::RenderRequest request = lgh::parseRenderRequest(json);
+  request.output.format = lgh::ImageFormat::ExrFloat;
+  return renderer.renderFrame(request).pixels.toFloatImage();
+}
+
 std::vector<lgh::FloatImage> renderAll(lgh::ContextBackend backend, std::string& contextPath) {
   lgh::RendererOptions options;
   options.backend = backend;
@@ -55,9 +62,9 @@ std::vector<lgh::FloatImage> renderAll(lgh::ContextBackend backend, std::string&
   contextPath = renderer.device().contextPath;
   std::vector<lgh::FloatImage> images;
   for (const std::string& request : kGoldenRequests) {
-    images.push_back(renderer.render(lgh::parseRenderRequest(request)).image);
+    images.push_back(linearImage(renderer, request));
   }
-  images.push_back(renderer.render(lgh::parseRenderRequest(kLghRequest)).image);
+  images.push_back(linearImage(renderer, kLghRequest));
   return images;
 }
 
@@ -121,33 +128,38 @@ TEST(ContextPaths, EachContextOwnsItsFunctionTable) {
 // Two renderers on one thread, on the same EGL display: each makes its own context current when
 // it renders or is destroyed, and destroying one leaves the display to the other.
 TEST(ContextPaths, RenderersShareAThreadAndADisplay) {
-  const auto request = lgh::parseRenderRequest(R"({"output": {"width": 24, "height": 16}})");
+  const char* request = R"({"output": {"width": 24, "height": 16}})";
   lgh::Renderer first(lgh::test::rendererOptions());
-  const lgh::FloatImage reference = first.render(request).image;
+  const lgh::FloatImage reference = linearImage(first, request);
   for (int round = 0; round < 3; ++round) {
     auto second = std::make_unique<lgh::Renderer>(lgh::test::rendererOptions());
-    EXPECT_TRUE(second->render(request).image.rgba == reference.rgba);
-    EXPECT_TRUE(first.render(request).image.rgba == reference.rgba);
+    EXPECT_TRUE(linearImage(*second, request).rgba == reference.rgba);
+    EXPECT_TRUE(linearImage(first, request).rgba == reference.rgba);
     second.reset();  // while `first`'s context is the current one
-    EXPECT_TRUE(first.render(request).image.rgba == reference.rgba) << "round " << round;
+    EXPECT_TRUE(linearImage(first, request).rgba == reference.rgba) << "round " << round;
   }
 }
 
 // A GPU reset ends a renderer (the test hook reports one after two frames): that frame and every
 // later one fail with Unavailable, and a new renderer renders as before.
 TEST(ContextPaths, ALostContextEndsTheRendererAndANewOneRenders) {
-  const auto request = lgh::parseRenderRequest(R"({"output": {"width": 24, "height": 16}})");
-  lgh::FloatImage reference;
+  // Linear pixels, not file bytes: the files' metadata carry the frame's timings.
+  const auto request =
+      lgh::parseRenderRequest(R"({"output": {"width": 24, "height": 16, "format": "exr-float"}})");
+  const auto pixelsOf = [](const lgh::RenderResult& result) {
+    return result.pixels.toFloatImage().rgba;
+  };
+  std::vector<float> reference;
   {
     lgh::Renderer clean(lgh::test::rendererOptions());
-    reference = clean.render(request).image;
+    reference = pixelsOf(clean.render(request));
   }
   setenv("LGH_DEBUG_CONTEXT_LOSS_AFTER", "2", 1);
   {
     lgh::Renderer renderer(lgh::test::rendererOptions());
     unsetenv("LGH_DEBUG_CONTEXT_LOSS_AFTER");
-    EXPECT_TRUE(renderer.render(request).image.rgba == reference.rgba);
-    EXPECT_TRUE(renderer.render(request).image.rgba == reference.rgba);
+    EXPECT_TRUE(pixelsOf(renderer.render(request)) == reference);
+    EXPECT_TRUE(pixelsOf(renderer.render(request)) == reference);
     EXPECT_TRUE(renderer.healthy());
     for (int i = 0; i < 2; ++i) {
       try {
@@ -160,7 +172,7 @@ TEST(ContextPaths, ALostContextEndsTheRendererAndANewOneRenders) {
     }
   }
   lgh::Renderer again(lgh::test::rendererOptions());
-  EXPECT_TRUE(again.render(request).image.rgba == reference.rgba);
+  EXPECT_TRUE(pixelsOf(again.render(request)) == reference);
 }
 
 TEST(ContextPathsDeathTest, GlCallWithoutContextNamesTheCall) {

@@ -620,7 +620,7 @@ TEST(GlobalIlluminationWithoutVulkan, IsUnavailableNamingTheField) {
   }
   const lgh::RenderResult after =
       renderer.render(lgh::parseRenderRequest(R"({"output": {"width": 16, "height": 16}})"));
-  EXPECT_EQ(after.image.width, 16);
+  EXPECT_EQ(after.pixels.width, 16);
 }
 
 }  // namespace

@@ -36,9 +36,7 @@ class GltfFeatureGolden : public ::testing::Test {
   static std::string golden(json request, const std::string& name) {
     request["settings"]["shadows"] = "off";
     const lgh::RenderRequest parsed = lgh::parseRenderRequest(request);
-    lgh::RenderResult result = renderer->render(parsed);
-    const lgh::Image8 image =
-        lgh::toDisplay8(result.image, parsed.output.toneMap, parsed.output.exposure, false);
+    const lgh::Image8 image = renderer->render(parsed).pixels.toImage8();
     return lgh::test::checkGolden(image, name, kMaxMeanError, kMaxFraction);
   }
 

@@ -27,8 +27,7 @@ class GoldenRender : public ::testing::Test {
 
   static lgh::Image8 render(const std::string& requestJson) {
     lgh::RenderRequest request = lgh::parseRenderRequest(requestJson);
-    lgh::RenderResult result = renderer->render(request);
-    return lgh::toDisplay8(result.image, request.output.toneMap, request.output.exposure, false);
+    return renderer->render(request).pixels.toImage8();
   }
 
   static inline std::unique_ptr<lgh::Renderer> renderer;
@@ -80,11 +79,10 @@ TEST_F(GoldenRender, TransparentBackgroundKeepsAlpha) {
   lgh::RenderRequest request = lgh::parseRenderRequest(
       R"({"scene": {"asset": "BoxTextured-glTF/BoxTextured.gltf"},
           "output": {"width": 64, "height": 64, "transparent_background": true}})");
-  lgh::RenderResult result = renderer->render(request);
-  const float* corner = result.image.pixel(0, 0);
-  const float* center = result.image.pixel(32, 32);
-  EXPECT_EQ(corner[3], 0.0F);
-  EXPECT_EQ(center[3], 1.0F);
+  const lgh::Image8 image = renderer->render(request).pixels.toImage8();
+  ASSERT_EQ(image.channels, 4);
+  EXPECT_EQ(image.pixels[3], 0);                         // the corner: background
+  EXPECT_EQ(image.pixels[(32 * 64 + 32) * 4 + 3], 255);  // the centre: the box
 }
 
 TEST_F(GoldenRender, TimingTableHasEveryPass) {

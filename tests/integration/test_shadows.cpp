@@ -36,8 +36,14 @@ class Shadows : public ::testing::Test {
     return opts;
   }
 
-  static lgh::RenderResult render(const json& request) {
-    return renderer->render(lgh::parseRenderRequest(request));
+  // A render and, for the EXR requests of these tests, its linear pixels.
+  struct Frame : lgh::RenderResult {
+    lgh::FloatImage image;
+  };
+  static Frame render(const json& request) {
+    Frame frame{renderer->render(lgh::parseRenderRequest(request)), {}};
+    if (!frame.pixels.isDisplay()) frame.image = frame.pixels.toFloatImage();
+    return frame;
   }
 
   static float luminance(const lgh::FloatImage& image, int x, int y) {
@@ -71,8 +77,8 @@ json occluderRequest(const std::string& shadows) {
 }
 
 TEST_F(Shadows, AnOccluderShadowsTheGroundWhereGeometrySays) {
-  const lgh::RenderResult lit = render(occluderRequest("off"));
-  const lgh::RenderResult shadowed = render(occluderRequest("on"));
+  const Frame lit = render(occluderRequest("off"));
+  const Frame shadowed = render(occluderRequest("on"));
   EXPECT_EQ(lit.decisions.at("shadows"), "off");
   EXPECT_NE(shadowed.decisions.at("shadows"), "none");
   const auto at = [](float fraction) { return 64 + static_cast<int>(fraction * 64.0F); };
@@ -93,9 +99,9 @@ TEST_F(Shadows, BothTracingPathsRenderTheSameImage) {
       {"settings", {{"shadows", "on"}, {"lgh", {{"enabled", true}, {"vpl_count", 3000}}}}},
       {"output", {{"width", 64}, {"height", 48}, {"format", "exr-float"}}}};
   request["settings"]["shadow_path"] = "ray-query";
-  const lgh::RenderResult rayQuery = render(request);
+  const Frame rayQuery = render(request);
   request["settings"]["shadow_path"] = "pipeline";
-  const lgh::RenderResult pipeline = render(request);
+  const Frame pipeline = render(request);
   EXPECT_EQ(rayQuery.decisions.at("shadows"), "ray-query");
   EXPECT_EQ(pipeline.decisions.at("shadows"), "pipeline");
   // The LGH's float atomics vary in the last bits from run to run (test_context_paths.cpp).
@@ -112,9 +118,9 @@ TEST_F(Shadows, BothTracingPathsRenderTheSameImage) {
 TEST_F(Shadows, ShadowsOnlyDarkenTheDemo) {
   json request = {{"output", {{"width", 96}, {"height", 72}, {"format", "exr-float"}}}};
   request["settings"]["shadows"] = "off";
-  const lgh::RenderResult off = render(request);
+  const Frame off = render(request);
   request["settings"]["shadows"] = "auto";
-  const lgh::RenderResult on = render(request);
+  const Frame on = render(request);
   int darker = 0;
   for (int y = 0; y < 72; ++y) {
     for (int x = 0; x < 96; ++x) {
@@ -137,9 +143,9 @@ TEST_F(Shadows, LghSamplesAreTracedAndFiltered) {
   json request = {{"settings", {{"lgh", {{"enabled", true}, {"vpl_count", 4000}}}}},
                   {"output", {{"width", 80}, {"height", 60}, {"format", "exr-float"}}}};
   request["settings"]["shadows"] = "off";
-  const lgh::RenderResult unshadowed = render(request);
+  const Frame unshadowed = render(request);
   request["settings"]["shadows"] = "on";
-  const lgh::RenderResult shadowed = render(request);
+  const Frame shadowed = render(request);
   EXPECT_EQ(shadowed.decisions.at("shadow_rays"), "7");  // 3 direct lights + k = 4 samples
   EXPECT_GE(shadowed.timings.get("shadow filter"), 0.0);
   double sumOff = 0.0;
@@ -158,10 +164,10 @@ TEST_F(Shadows, ALightWithARadiusCastsPenumbrae) {
   json soft = hard;
   soft["lights"][0]["radius"] = 0.3;
   soft["settings"]["shadow_light_samples"] = 16;
-  const lgh::RenderResult hardImage = render(hard);
-  const lgh::RenderResult softImage = render(soft);
+  const Frame hardImage = render(hard);
+  const Frame softImage = render(soft);
   EXPECT_EQ(softImage.decisions.at("shadow_rays"), "16");
-  const lgh::RenderResult open = render(occluderRequest("off"));
+  const Frame open = render(occluderRequest("off"));
   int partial = 0;
   for (int x = 64; x < 128; ++x) {
     const float lit = luminance(open.image, x, 64);
@@ -177,7 +183,7 @@ TEST_F(Shadows, LightsBeyondTheRayBudgetAreNamedInAWarning) {
   request["settings"]["shadow_light_samples"] = 16;
   json light = request["lights"][0];
   for (int i = 0; i < 4; ++i) request["lights"].push_back(light);  // 5 lights x 16 = 80 > 64
-  const lgh::RenderResult result = render(request);
+  const Frame result = render(request);
   EXPECT_EQ(result.decisions.at("shadow_rays"), "64");
   ASSERT_EQ(result.warnings.size(), 1U);
   EXPECT_NE(result.warnings[0].find("1 of 5 lights cast no shadows"), std::string::npos)

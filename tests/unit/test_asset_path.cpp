@@ -51,6 +51,11 @@ std::string triangleGltf(const std::string& bufferUri, const std::string& imageU
     gltf["textures"] = {{{"source", 0}}};
     gltf["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
     gltf["meshes"][0]["primitives"][0]["material"] = 0;
+    // The texture coordinates the material samples (the first 24 bytes of the buffer).
+    gltf["bufferViews"].push_back({{"buffer", 0}, {"byteLength", 24}});
+    gltf["accessors"].push_back(
+        {{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+    gltf["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 1;
   }
   return gltf.dump();
 }

@@ -377,11 +377,40 @@ TEST(RequestErrors, NonObjectJsonValue) {
   EXPECT_EQ(error.field(), "/");
 }
 
-TEST(RequestErrors, DeepNestingInUnknownPropertyDoesNotCrash) {
+TEST(RequestErrors, DeepNestingIsRefusedBeforeParsing) {
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
   const Error error = parseError(R"({"junk": )" + deep + "}");
-  EXPECT_EQ(error.field(), "/junk");
-  EXPECT_EQ(error.code(), ErrorCode::BadRequest);
+  EXPECT_EQ(error.code(), ErrorCode::TooLarge);
+  EXPECT_NE(error.message().find("limit of 32 levels"), std::string::npos) << error.message();
+  EXPECT_NE(error.message().find("at byte 40"), std::string::npos) << error.message();  // 33rd [
+  // 32 levels are fine as far as nesting goes (the schema then refuses the unknown property).
+  const std::string allowed = std::string(31, '[') + std::string(31, ']');
+  EXPECT_EQ(parseError(R"({"junk": )" + allowed + "}").code(), ErrorCode::BadRequest);
+}
+
+TEST(RequestErrors, DeepNestingOfJsonBuiltInCodeIsRefusedNamingThePointer) {
+  nlohmann::json deep = nlohmann::json::array();
+  for (int i = 0; i < 40; ++i) deep = nlohmann::json::array({std::move(deep)});
+  try {
+    parseRenderRequest(nlohmann::json{{"lights", deep}});
+    FAIL() << "accepted";
+  } catch (const Error& error) {
+    EXPECT_EQ(error.code(), ErrorCode::TooLarge);
+    EXPECT_EQ(
+        error.field(), "/lights" + [] {
+          std::string tail;
+          for (int i = 0; i < 31; ++i) tail += "/0";
+          return tail;
+        }());
+  }
+}
+
+TEST(RequestErrors, TooManyValuesAreRefusedBeforeParsing) {
+  std::string many = "[0";
+  for (int i = 0; i < 1'000'000; ++i) many += ",0";
+  const Error error = parseError(R"({"junk": )" + many + "]}");
+  EXPECT_EQ(error.code(), ErrorCode::TooLarge);
+  EXPECT_NE(error.message().find("limit of 1000000 values"), std::string::npos) << error.message();
 }
 
 // --- Limits -----------------------------------------------------------------------------------

@@ -30,6 +30,26 @@ struct Image8 {
   std::vector<std::uint8_t> pixels;
 };
 
+// An 8-bit image in memory someone else owns (a mapped read-back buffer): `channels` 1..4, rows
+// top to bottom, tightly packed.
+struct Image8View {
+  int width = 0;
+  int height = 0;
+  int channels = 4;
+  const std::uint8_t* pixels = nullptr;
+};
+
+// Linear RGBA in memory someone else owns: half floats (IEEE binary16) or floats, rows top to
+// bottom, tightly packed.
+struct LinearRgbaView {
+  int width = 0;
+  int height = 0;
+  bool halfFloat = false;
+  const void* pixels = nullptr;
+};
+
+class TaskPool;
+
 // Text attributes written into files: PNG tEXt chunks, EXR string attributes.
 using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 
@@ -38,10 +58,19 @@ namespace image_io {
 // Name of the backend compiled in: "oiio" or "lean".
 const char* backendName();
 
-// PNG, 8 bits per channel, channels as given (3 = RGB, 4 = RGBA); zlib level 0..9.
+// PNG, 8 bits per channel, channels as given (3 = RGB, 4 = RGBA); zlib level 0..9 (0 stores,
+// 1 is fastest, 9 smallest). With a pool, a large image is filtered and deflated on its idle
+// workers too (docs/IMAGES.md, "PNG encoder"). The same encoder in both backends.
+std::vector<std::uint8_t> encodePng(const Image8View& image, const ImageMetadata& metadata = {},
+                                    int compressionLevel = kDefaultPngCompression,
+                                    TaskPool* pool = nullptr);
 std::vector<std::uint8_t> encodePng(const Image8& image, const ImageMetadata& metadata = {},
-                                    int compressionLevel = kDefaultPngCompression);
-// OpenEXR, RGBA, half or float, linear.
+                                    int compressionLevel = kDefaultPngCompression,
+                                    TaskPool* pool = nullptr);
+// OpenEXR, RGBA, linear: a half-float file from half pixels (stored as they are) or from floats
+// (rounded to nearest even), a float file from floats.
+std::vector<std::uint8_t> encodeExr(const LinearRgbaView& image, bool halfFloat,
+                                    const ImageMetadata& metadata = {});
 std::vector<std::uint8_t> encodeExr(const FloatImage& image, bool halfFloat,
                                     const ImageMetadata& metadata = {});
 
@@ -70,7 +99,9 @@ std::vector<std::uint8_t> readFile(const std::filesystem::path& path);
 // Tone mapping (ToneMap) + exposure + sRGB encoding of a linear image to 8 bits.
 Image8 toDisplay8(const FloatImage& linear, ToneMap toneMap, float exposure, bool keepAlpha);
 
-// Encodes in the request's format (PNG: tone-mapped sRGB; EXR: linear).
+// Encodes a linear image in the request's format on the CPU (PNG: tone-mapped sRGB by toDisplay8;
+// EXR: linear). Rendered frames come display-encoded by the GPU instead: see encodeFrame
+// (frame_pixels.hpp).
 std::vector<std::uint8_t> encodeImage(const FloatImage& linear, const OutputSettings& output,
                                       const ImageMetadata& metadata = {});
 const char* mimeType(ImageFormat format);

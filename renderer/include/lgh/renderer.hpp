@@ -1,10 +1,19 @@
 // The renderer's public API: a Renderer owns one headless GL context and turns a validated
-// RenderRequest into a linear image plus a timing table. The daemon, the CLI and the benchmark are
-// thin clients of this header; none of them sees GL. Nothing inside the library includes it: the
-// types it trades in live in vocabulary headers of their own.
+// RenderRequest into an image (its pixels as the GPU wrote them, and their encoding) plus a timing
+// table. The daemon, the CLI and the benchmark are thin clients of this header; none of them sees
+// GL. Nothing inside the library includes it: the types it trades in live in vocabulary headers
+// of their own.
+//
+// Frames in flight (docs/ARCHITECTURE.md): submit() issues a frame's GPU work and the copy of its
+// pixels into read-back memory, and returns without waiting for the GPU; finish() hands the
+// oldest frame over once its fence has signalled. The pixels are then read where the GPU put
+// them, on any thread (encode them on a TaskPool), and go back to the renderer when the last
+// FramePixels holding them is released. render() is submit() + finish() + encode in one call.
 #pragma once
 
+#include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "lgh/device_info.hpp"
 #include "lgh/render_result.hpp"
@@ -24,11 +33,37 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // Throws lgh::Error: NotFound/Invalid/TooLarge for bad scenes, Internal for GL failures.
+  // Renders and encodes on this thread. Throws lgh::Error: NotFound/Invalid/TooLarge for bad
+  // scenes, Internal for GL failures. Frames submitted earlier stay pending.
   RenderResult render(const RenderRequest& request);
   // The same frame without its encoding (`encoded` stays empty, no "encode" row): for callers
   // that encode elsewhere (RenderResult::encode is safe on any thread) or not at all.
   RenderResult renderFrame(const RenderRequest& request);
+
+  // Issues the frame (scene lookup and upload, passes, the read-back copy) and returns its id
+  // without waiting for the GPU. With options().framesInFlight frames pending, it first waits for
+  // the oldest one's read-back (that frame stays pending for finish()). Throws as render() does;
+  // a frame that throws is not pending.
+  std::uint64_t submit(const RenderRequest& request);
+  // The oldest pending frame, once its pixels are read back (`encoded` empty: encode it with
+  // RenderResult::encode, anywhere). Without `wait`, nullopt while it is still on the GPU; nullopt
+  // when none is pending. Throws lgh::Error(Internal) when the GPU cannot be waited for.
+  std::optional<RenderResult> finish(bool wait);
+  std::size_t pendingFrames() const;
+
+  // A hint that `request` comes next: its scene is parsed on a thread of its own meanwhile,
+  // unless it is cached (the GL upload waits for the submit). Errors surface from that submit.
+  void prefetch(const RenderRequest& request);
+
+  // Read-back memory: buffers held by frames (pending, or finished and not yet released) and all
+  // buffers the renderer keeps. Safe on any thread.
+  struct ReadbackStats {
+    std::size_t heldBuffers = 0;
+    std::size_t heldBytes = 0;
+    std::size_t pooledBuffers = 0;
+    std::size_t pooledBytes = 0;
+  };
+  ReadbackStats readbackStats() const;
 
   const DeviceInfo& device() const;
   const RendererOptions& options() const;

@@ -5,12 +5,23 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "lgh/enum_names.hpp"
 
 namespace lgh {
 
 enum class ContextBackend { Auto, EglDevice, Surfaceless, OSMesa };
+
+// The scene parser worker process: started as `executable arguments...` with its end of a socket
+// on file descriptor 3, where the program must call lgh::runSceneParserWorker(3). One worker,
+// started with the renderer and restarted after it dies.
+struct SceneWorkerOptions {
+  std::filesystem::path executable;  // empty: no worker, parse in the renderer's process
+  std::vector<std::string> arguments;
+  std::size_t memoryBytes = 4ULL << 30;  // its data size limit (RLIMIT_DATA): past it, 413
+  double timeoutSeconds = 120.0;         // one load; past it the worker is killed: 413
+};
 
 template <>
 struct EnumNames<ContextBackend> {
@@ -34,7 +45,15 @@ struct RendererOptions {
   std::filesystem::path assetRoot = ".";
   std::size_t maxTriangles = 20'000'000;
   int maxTextureSize = 16384;
+  std::size_t maxTextureBytes = 4ULL << 30;    // all textures of one scene, decoded to RGBA8
   std::size_t sceneCacheBytes = 512ULL << 20;  // GPU memory budget of the scene cache
+  // Frames whose GPU work and read-back may be under way at once (Renderer::submit): the GPU
+  // works on frame N while the CPU issues frame N + 1.
+  int framesInFlight = 2;
+  // Untrusted assets (paths, uploads, inline GLBs) parsed in a worker process
+  // (lgh/scene_worker.hpp) rather than in this one: a parser crash or runaway then fails one load,
+  // not the process. Empty executable: in this process.
+  SceneWorkerOptions sceneWorker;
 };
 
 }  // namespace lgh

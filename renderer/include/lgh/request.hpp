@@ -306,7 +306,13 @@ struct RequestLimits {
 // the typed request. Throws lgh::Error (BadRequest/Invalid/TooLarge) naming the JSON path.
 RenderRequest parseRenderRequest(const nlohmann::json& json, const RequestLimits& limits = {});
 
-// Parses text first: malformed JSON is a BadRequest with the byte offset.
+// Parses untrusted request text (a render request, a thumbnail batch, a multipart request part)
+// within the limits every request JSON has: at most 32 levels of arrays and objects and about a
+// million values (TooLarge naming the limit and the byte), then as JSON (BadRequest naming the
+// byte of a syntax error).
+nlohmann::json parseRequestJson(const std::string& text);
+
+// Parses text first (parseRequestJson): malformed JSON is a BadRequest with the byte offset.
 RenderRequest parseRenderRequest(const std::string& text, const RequestLimits& limits = {});
 // A string literal is text (without this overload it would be ambiguous with the JSON one).
 inline RenderRequest parseRenderRequest(const char* text, const RequestLimits& limits = {}) {

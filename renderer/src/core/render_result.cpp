@@ -47,8 +47,8 @@ ImageMetadata RenderResult::metadata() const {
           {"lgh:timings", timings.toJson().dump()}};
 }
 
-std::vector<std::uint8_t> RenderResult::encode(const OutputSettings& output) const {
-  return encodeImage(image, output, metadata());
+std::vector<std::uint8_t> RenderResult::encode(TaskPool* pool) const {
+  return encodeFrame(pixels, output, metadata(), pool);
 }
 
 nlohmann::json RenderResult::summaryJson() const {

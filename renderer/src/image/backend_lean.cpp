@@ -1,6 +1,9 @@
-// Image I/O on libpng (PNG), OpenEXR 3.1 (EXR) and stb_image (JPEG, read only): small enough to
-// ship with the GPU bundle. Everything happens in memory: libpng through read/write callbacks,
-// OpenEXR through IStream/OStream subclasses over byte buffers.
+// Image I/O on libpng (PNG, read), OpenEXR 3.1 (EXR) and libjpeg-turbo (JPEG, read only): small
+// enough to ship with the GPU bundle. PNG files are written by the shared encoder (png_writer.hpp).
+// (JPEG went through stb_image until fuzzing found undefined behaviour in its Huffman table code;
+// stb_image is not meant for untrusted input, libjpeg-turbo is fuzzed continuously upstream, and
+// OpenImageIO uses it too.) Everything happens in memory: libpng through a read callback, OpenEXR
+// through IStream/OStream subclasses over byte buffers.
 #include <climits>
 #include <csetjmp>
 #include <cstdio>
@@ -26,15 +29,8 @@
 #include "lgh/error.hpp"
 #include "lgh/image.hpp"
 
-// stb_image compiled into this file only, JPEG only, from memory only; static so it cannot clash
-// with another copy elsewhere in the process.
-#define STB_IMAGE_IMPLEMENTATION
-#define STB_IMAGE_STATIC
-#define STBI_ONLY_JPEG
-#define STBI_NO_STDIO
-#define STBI_NO_LINEAR
-#define STBI_MAX_DIMENSIONS 16384  // detail::kMaxDecodeDimension; we check before decoding too
-#include <stb_image.h>
+// After <cstdio>: jpeglib.h needs FILE and size_t declared before it.
+#include <jpeglib.h>
 
 namespace lgh::image_io {
 
@@ -54,7 +50,6 @@ struct PngIo {
   const std::uint8_t* input = nullptr;  // reading
   std::size_t inputSize = 0;
   std::size_t position = 0;
-  std::vector<std::uint8_t>* output = nullptr;  // writing
   char error[256] = {};
 };
 
@@ -74,36 +69,17 @@ void readFromMemory(png_structp png, png_bytep destination, std::size_t length) 
   io->position += length;
 }
 
-void appendToVector(png_structp png, png_bytep data, std::size_t length) {
-  auto* io = static_cast<PngIo*>(png_get_io_ptr(png));
-  bool outOfMemory = false;
-  try {
-    io->output->insert(io->output->end(), data, data + length);
-  } catch (const std::bad_alloc&) {
-    outOfMemory = true;
-  }
-  // png_error longjmps: never from inside the catch block.
-  if (outOfMemory) png_error(png, "out of memory");
-}
-
-void flushNothing(png_structp /*png*/) {}
-
-// Owns a png_struct and its png_info for reading or writing.
+// Owns a png_struct and its png_info for reading.
 class PngStructs {
  public:
-  PngStructs(PngIo& io, bool writing) : writing_(writing) {
-    png_ = writing ? png_create_write_struct(PNG_LIBPNG_VER_STRING, &io, onPngError, onPngWarning)
-                   : png_create_read_struct(PNG_LIBPNG_VER_STRING, &io, onPngError, onPngWarning);
+  explicit PngStructs(PngIo& io) {
+    png_ = png_create_read_struct(PNG_LIBPNG_VER_STRING, &io, onPngError, onPngWarning);
     if (png_) info_ = png_create_info_struct(png_);
     if (!png_ || !info_) {
       destroy();
       throw Error(ErrorCode::Internal, "libpng could not allocate its structures");
     }
-    if (writing) {
-      png_set_write_fn(png_, &io, appendToVector, flushNothing);
-    } else {
-      png_set_read_fn(png_, &io, readFromMemory);
-    }
+    png_set_read_fn(png_, &io, readFromMemory);
   }
   PngStructs(const PngStructs&) = delete;
   PngStructs& operator=(const PngStructs&) = delete;
@@ -113,65 +89,11 @@ class PngStructs {
   png_infop info() const { return info_; }
 
  private:
-  void destroy() {
-    png_infopp info = info_ ? &info_ : nullptr;
-    if (writing_) {
-      png_destroy_write_struct(&png_, info);
-    } else {
-      png_destroy_read_struct(&png_, info, nullptr);
-    }
-  }
+  void destroy() { png_destroy_read_struct(&png_, info_ ? &info_ : nullptr, nullptr); }
 
-  bool writing_;
   png_structp png_ = nullptr;
   png_infop info_ = nullptr;
 };
-
-constexpr int pngColorType(int channels) {
-  switch (channels) {
-    case 1:
-      return PNG_COLOR_TYPE_GRAY;
-    case 2:
-      return PNG_COLOR_TYPE_GRAY_ALPHA;
-    case 3:
-      return PNG_COLOR_TYPE_RGB;
-    default:
-      return PNG_COLOR_TYPE_RGB_ALPHA;
-  }
-}
-
-// ---- PNG encoding ----
-
-bool writePngGuarded(png_structp png, png_infop info, const Image8& image, int compressionLevel,
-                     png_textp text, int textCount, png_bytepp rows) {
-  if (setjmp(png_jmpbuf(png))) return false;
-  png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
-               static_cast<png_uint_32>(image.height), 8, pngColorType(image.channels),
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_set_compression_level(png, compressionLevel);
-  png_set_compression_strategy(png, detail::kPngZlibStrategy);
-  png_set_filter(png, PNG_FILTER_TYPE_BASE, detail::kPngFilters);
-  // OpenImageIO always writes the (zero) image offset; so do we, for byte-identical files.
-  png_set_oFFs(png, info, 0, 0, PNG_OFFSET_PIXEL);
-  if (textCount > 0) png_set_text(png, info, text, textCount);
-  png_write_info(png, info);
-  png_write_image(png, rows);
-  png_write_end(png, info);
-  return true;
-}
-
-// tEXt chunks (uncompressed Latin-1 by the PNG spec; we store the bytes as given, as OIIO does).
-// The pointers refer into `metadata`, which outlives the write.
-std::vector<png_text> textChunks(const ImageMetadata& metadata) {
-  std::vector<png_text> chunks(metadata.size());
-  for (std::size_t i = 0; i < metadata.size(); ++i) {
-    chunks[i].compression = PNG_TEXT_COMPRESSION_NONE;
-    chunks[i].key = const_cast<char*>(metadata[i].first.c_str());
-    chunks[i].text = const_cast<char*>(metadata[i].second.c_str());
-    chunks[i].text_length = metadata[i].second.size();
-  }
-  return chunks;
-}
 
 // ---- PNG decoding ----
 
@@ -240,7 +162,7 @@ Pixels8 readPng(const std::uint8_t* data, std::size_t size, bool rgba, const std
   PngIo io;
   io.input = data;
   io.inputSize = size;
-  PngStructs structs(io, false);
+  PngStructs structs(io);
   PngLayout layout;
   if (!readPngHeaderGuarded(structs.png(), structs.info(), rgba, layout)) {
     throw brokenImage("PNG", io.error, what);
@@ -262,33 +184,150 @@ Pixels8 readPng(const std::uint8_t* data, std::size_t size, bool rgba, const std
   return result;
 }
 
-// ---- JPEG decoding (stb_image) ----
+// ---- JPEG decoding (libjpeg-turbo) ----
+//
+// libjpeg reports errors through error_exit, which must not return: it longjmps back to the
+// setjmp in one of the *Guarded functions below, which, as for libpng, create no objects with
+// destructors.
 
-struct StbFree {
-  void operator()(stbi_uc* pixels) const { stbi_image_free(pixels); }
+// Progressive JPEGs may hold any number of scans, each a pass over the whole image: a small file
+// with thousands of them costs minutes (libjpeg-turbo's own fuzzers stop at 500).
+constexpr int kMaxJpegScans = 500;
+
+struct JpegError {
+  jpeg_error_mgr manager;  // first: libjpeg hands back a pointer to it
+  std::jmp_buf jump;
+  char message[JMSG_LENGTH_MAX];
 };
 
-// `desiredChannels` 0 keeps the file's channels (1 or 3).
+[[noreturn]] void jpegErrorExit(j_common_ptr info) {
+  auto* error = reinterpret_cast<JpegError*>(info->err);
+  (*info->err->format_message)(info, error->message);
+  std::longjmp(error->jump, 1);
+}
+
+// Warnings (corrupt data that libjpeg can decode around) are not errors, as in OpenImageIO.
+void jpegIgnoreMessage(j_common_ptr /*info*/, int /*level*/) {}
+
+void jpegCountScans(j_common_ptr info) {
+  const auto* decompress = reinterpret_cast<j_decompress_ptr>(info);
+  if (decompress->input_scan_number > kMaxJpegScans) {
+    auto* error = reinterpret_cast<JpegError*>(info->err);
+    std::snprintf(error->message, sizeof(error->message), "more than %d progressive scans",
+                  kMaxJpegScans);
+    std::longjmp(error->jump, 1);
+  }
+}
+
+// A decompressor and its error manager, created and destroyed together.
+class JpegDecoder {
+ public:
+  JpegDecoder() {
+    info_.err = jpeg_std_error(&error_.manager);
+    error_.manager.error_exit = &jpegErrorExit;
+    error_.manager.emit_message = &jpegIgnoreMessage;
+    progress_.progress_monitor = &jpegCountScans;
+    created_ = createGuarded();
+  }
+  ~JpegDecoder() {
+    if (created_) jpeg_destroy_decompress(&info_);
+  }
+  JpegDecoder(const JpegDecoder&) = delete;
+  JpegDecoder& operator=(const JpegDecoder&) = delete;
+
+  bool created() const { return created_; }
+  jpeg_decompress_struct& info() { return info_; }
+  const char* message() const { return error_.message; }
+
+  bool readHeaderGuarded(const std::uint8_t* data, std::size_t size) {
+    if (setjmp(error_.jump)) return false;
+    jpeg_mem_src(&info_, data, static_cast<unsigned long>(size));
+    jpeg_read_header(&info_, TRUE);
+    info_.progress = &progress_;
+    return true;
+  }
+
+  bool startGuarded() {
+    if (setjmp(error_.jump)) return false;
+    jpeg_start_decompress(&info_);
+    return true;
+  }
+
+  bool readRowsGuarded(std::uint8_t* pixels, std::size_t rowBytes) {
+    if (setjmp(error_.jump)) return false;
+    while (info_.output_scanline < info_.output_height) {
+      JSAMPROW row = pixels + static_cast<std::size_t>(info_.output_scanline) * rowBytes;
+      jpeg_read_scanlines(&info_, &row, 1);
+    }
+    jpeg_finish_decompress(&info_);
+    return true;
+  }
+
+ private:
+  bool createGuarded() {
+    error_.message[0] = 0;
+    if (setjmp(error_.jump)) return false;
+    jpeg_create_decompress(&info_);
+    return true;
+  }
+
+  jpeg_decompress_struct info_{};
+  JpegError error_{};
+  jpeg_progress_mgr progress_{};
+  bool created_ = false;
+};
+
+// Adobe CMYK and YCCK JPEGs store inverted ink: R = C * K / 255 (as in OpenImageIO and
+// stb_image).
+void cmykToRgb(const std::vector<std::uint8_t>& cmyk, std::size_t pixels, int channels,
+               std::vector<std::uint8_t>& out) {
+  out.resize(pixels * static_cast<std::size_t>(channels));
+  for (std::size_t i = 0; i < pixels; ++i) {
+    const std::uint8_t* ink = &cmyk[i * 4];
+    for (int c = 0; c < 3; ++c) {
+      out[i * channels + c] = static_cast<std::uint8_t>((ink[c] * ink[3] + 127) / 255);
+    }
+    if (channels == 4) out[i * channels + 3] = 0xFF;
+  }
+}
+
+// `desiredChannels` 0 keeps the file's channels (1, or 3 for colour); 4 gives RGBA.
 Pixels8 readJpeg(const std::uint8_t* data, std::size_t size, int desiredChannels,
                  const std::string& what) {
   if (size > static_cast<std::size_t>(INT_MAX)) {
     throw Error(ErrorCode::TooLarge, "JPEG data over 2 GiB", what);
   }
-  const int length = static_cast<int>(size);
-  int width = 0;
-  int height = 0;
-  int fileChannels = 0;
-  if (!stbi_info_from_memory(data, length, &width, &height, &fileChannels)) {
-    throw brokenImage("JPEG", stbi_failure_reason(), what);
+  JpegDecoder decoder;
+  if (!decoder.created()) throw brokenImage("JPEG", decoder.message(), what);
+  if (!decoder.readHeaderGuarded(data, size)) throw brokenImage("JPEG", decoder.message(), what);
+  jpeg_decompress_struct& info = decoder.info();
+  detail::checkDecodeSize(info.image_width, info.image_height, what);
+  const bool ink = info.jpeg_color_space == JCS_CMYK || info.jpeg_color_space == JCS_YCCK;
+  const bool grey = info.jpeg_color_space == JCS_GRAYSCALE;
+  const int channels = desiredChannels != 0 ? desiredChannels : (grey ? 1 : 3);
+  if (ink) {
+    info.out_color_space = JCS_CMYK;
+  } else if (channels == 4) {
+    info.out_color_space = JCS_EXT_RGBA;
+  } else {
+    info.out_color_space = channels == 1 ? JCS_GRAYSCALE : JCS_RGB;
   }
-  detail::checkDecodeSize(width, height, what);
-  std::unique_ptr<stbi_uc, StbFree> decoded(
-      stbi_load_from_memory(data, length, &width, &height, &fileChannels, desiredChannels));
-  if (!decoded) throw brokenImage("JPEG", stbi_failure_reason(), what);
-  const int channels = desiredChannels != 0 ? desiredChannels : fileChannels;
-  const std::size_t count = static_cast<std::size_t>(width) * height * channels;
-  return {
-      width, height, channels, std::vector<std::uint8_t>(decoded.get(), decoded.get() + count), {}};
+  if (!decoder.startGuarded()) throw brokenImage("JPEG", decoder.message(), what);
+  const int outputChannels = info.output_components;
+  const std::size_t width = info.output_width;
+  const std::size_t height = info.output_height;
+  std::vector<std::uint8_t> decoded(width * height * static_cast<std::size_t>(outputChannels));
+  if (!decoder.readRowsGuarded(decoded.data(), width * static_cast<std::size_t>(outputChannels))) {
+    throw brokenImage("JPEG", decoder.message(), what);
+  }
+  Pixels8 result{static_cast<int>(width), static_cast<int>(height), channels, {}, {}};
+  if (ink) {
+    cmykToRgb(decoded, width * height, channels == 1 ? 3 : channels, result.pixels);
+    if (channels == 1) result.channels = 3;
+  } else {
+    result.pixels = std::move(decoded);
+  }
+  return result;
 }
 
 // ---- OpenEXR streams over memory ----
@@ -340,8 +379,8 @@ constexpr const char* kRgbaChannels[] = {"R", "G", "B", "A"};
 // ---- OpenEXR encoding ----
 
 // The pixels as the file stores them: OpenEXR's scanline writer converts between frame buffer and
-// file pixel types only on read, so half output needs a half buffer (Imath's conversion rounds to
-// nearest even, as OpenImageIO's does).
+// file pixel types only on read, so a half file from floats needs a half buffer (Imath's
+// conversion rounds to nearest even, as OpenImageIO's does). Half pixels are stored as they are.
 struct ExrPixels {
   Imf::PixelType type;
   std::vector<Imath::half> halves;
@@ -349,15 +388,18 @@ struct ExrPixels {
   std::size_t valueSize;
 };
 
-ExrPixels filePixels(const FloatImage& image, bool halfFloat) {
-  if (!halfFloat) return {Imf::FLOAT, {}, image.rgba.data(), sizeof(float)};
-  ExrPixels pixels{Imf::HALF, std::vector<Imath::half>(image.rgba.begin(), image.rgba.end()),
-                   nullptr, sizeof(Imath::half)};
+ExrPixels filePixels(const LinearRgbaView& image, bool halfFloat) {
+  if (image.halfFloat) return {Imf::HALF, {}, image.pixels, sizeof(Imath::half)};
+  if (!halfFloat) return {Imf::FLOAT, {}, image.pixels, sizeof(float)};
+  const auto* floats = static_cast<const float*>(image.pixels);
+  const std::size_t count = static_cast<std::size_t>(image.width) * image.height * 4;
+  ExrPixels pixels{Imf::HALF, std::vector<Imath::half>(floats, floats + count), nullptr,
+                   sizeof(Imath::half)};
   pixels.data = pixels.halves.data();
   return pixels;
 }
 
-void writeExr(const FloatImage& image, bool halfFloat, const ImageMetadata& metadata,
+void writeExr(const LinearRgbaView& image, bool halfFloat, const ImageMetadata& metadata,
               std::vector<std::uint8_t>& bytes) {
   const ExrPixels pixels = filePixels(image, halfFloat);
   Imf::Header header(image.width, image.height);
@@ -440,32 +482,9 @@ Decoded toDecoded(Pixels8&& image) {
 
 const char* backendName() { return "lean"; }
 
-std::vector<std::uint8_t> encodePng(const Image8& image, const ImageMetadata& metadata,
-                                    int compressionLevel) {
-  detail::checkImage8(image);
-  detail::checkPngCompression(compressionLevel);
-  detail::checkMetadata(metadata, MetadataFormat::Png);
-  std::vector<std::uint8_t> bytes;
-  PngIo io;
-  io.output = &bytes;
-  PngStructs structs(io, true);
-  std::vector<png_text> text = textChunks(metadata);
-  const std::size_t rowBytes = static_cast<std::size_t>(image.width) * image.channels;
-  std::vector<png_bytep> rows(static_cast<std::size_t>(image.height));
-  for (std::size_t y = 0; y < rows.size(); ++y) {
-    // libpng's row type is non-const, but it does not modify rows it writes.
-    rows[y] = const_cast<png_bytep>(&image.pixels[y * rowBytes]);
-  }
-  if (!writePngGuarded(structs.png(), structs.info(), image, compressionLevel, text.data(),
-                       static_cast<int>(text.size()), rows.data())) {
-    throw Error(ErrorCode::Internal, fmt::format("libpng could not encode: {}", io.error));
-  }
-  return bytes;
-}
-
-std::vector<std::uint8_t> encodeExr(const FloatImage& image, bool halfFloat,
+std::vector<std::uint8_t> encodeExr(const LinearRgbaView& image, bool halfFloat,
                                     const ImageMetadata& metadata) {
-  detail::checkFloatImage(image);
+  detail::checkLinearRgbaView(image, halfFloat);
   detail::checkMetadata(metadata, MetadataFormat::Exr);
   std::vector<std::uint8_t> bytes;
   try {

@@ -210,24 +210,9 @@ ImageMetadata readMetadata(const OIIO::ImageSpec& spec, const std::string& forma
 
 const char* backendName() { return "oiio"; }
 
-std::vector<std::uint8_t> encodePng(const Image8& image, const ImageMetadata& metadata,
-                                    int compressionLevel) {
-  detail::checkImage8(image);
-  detail::checkPngCompression(compressionLevel);
-  detail::checkMetadata(metadata, MetadataFormat::Png);
-  OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::UINT8);
-  if (image.channels == 2) spec.alpha_channel = 1;
-  // Our pixels are straight (unassociated) alpha, as PNG stores them: no conversion.
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  spec.attribute("png:compressionLevel", compressionLevel);
-  spec.attribute("png:filter", detail::kPngFilters);  // zlib strategy: always the default
-  for (const auto& [key, value] : metadata) spec.attribute(key, value);
-  return writeToMemory("memory.png", spec, OIIO::TypeDesc::UINT8, image.pixels.data());
-}
-
-std::vector<std::uint8_t> encodeExr(const FloatImage& image, bool halfFloat,
+std::vector<std::uint8_t> encodeExr(const LinearRgbaView& image, bool halfFloat,
                                     const ImageMetadata& metadata) {
-  detail::checkFloatImage(image);
+  detail::checkLinearRgbaView(image, halfFloat);
   detail::checkMetadata(metadata, MetadataFormat::Exr);
   OIIO::ImageSpec spec(image.width, image.height, 4,
                        halfFloat ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
@@ -235,7 +220,9 @@ std::vector<std::uint8_t> encodeExr(const FloatImage& image, bool halfFloat,
   for (const auto& [key, value] : detail::withCaptureDate(metadata)) {
     spec.attribute(std::string(oiioNameFor(key, kExrWriteAliases)), value);
   }
-  return writeToMemory("memory.exr", spec, OIIO::TypeDesc::FLOAT, image.rgba.data());
+  return writeToMemory("memory.exr", spec,
+                       image.halfFloat ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT,
+                       image.pixels);
 }
 
 Decoded decode(const std::vector<std::uint8_t>& bytes, const std::string& what) {
@@ -259,6 +246,13 @@ Decoded decode(const std::vector<std::uint8_t>& bytes, const std::string& what) 
 }
 
 Image8 decodeTextureRgba8(const std::uint8_t* data, std::size_t size, const std::string& what) {
+  // glTF textures are PNG or JPEG. OpenImageIO would probe every format it has a reader for
+  // (TIFF, DPX, PSD, ...), which is far more code for hostile bytes to reach; the lean backend
+  // reads these two only, and so does this one.
+  const FileKind kind = size == 0 ? FileKind::Unknown : detail::sniffFileKind(data, size);
+  if (size > 0 && kind != FileKind::Png && kind != FileKind::Jpeg) {
+    throw Error(ErrorCode::Invalid, "texture is not a PNG or JPEG image", what);
+  }
   OpenInput opened = openFromMemory(data, size, what);
   const OIIO::ImageSpec& spec = opened.input->spec();
   // Grey, grey + alpha, RGB or RGBA; extra channels (e.g. depth) are not part of a texture.

@@ -85,6 +85,8 @@ class SrgbEncoder {
     }
   }
 
+  const std::array<float, 256>& thresholds() const { return thresholds_; }
+
   // `linear01` must lie in [0, 1].
   std::uint8_t encode(float linear01) const {
     unsigned code = bucketCode_[std::bit_cast<std::uint32_t>(linear01) >> kDroppedMantissaBits];
@@ -98,10 +100,12 @@ class SrgbEncoder {
   std::vector<std::uint8_t> bucketCode_;
 };
 
-std::uint8_t encodeSrgb8(float linear01) {
+const SrgbEncoder& srgbEncoder() {
   static const SrgbEncoder encoder;
-  return encoder.encode(linear01);
+  return encoder;
 }
+
+std::uint8_t encodeSrgb8(float linear01) { return srgbEncoder().encode(linear01); }
 
 std::uint8_t displayChannel(float linear, ToneMap mode, float exposure) {
   float value = linear * exposure;
@@ -282,6 +286,26 @@ void checkImage8(const Image8& image) {
                             image.height, image.channels, image.pixels.size()));
   }
 }
+
+void checkImage8View(const Image8View& image) {
+  if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4 ||
+      image.pixels == nullptr) {
+    throw Error(ErrorCode::Internal, fmt::format("malformed 8-bit image view: {}x{}, {} channels",
+                                                 image.width, image.height, image.channels));
+  }
+}
+
+void checkLinearRgbaView(const LinearRgbaView& image, bool halfFile) {
+  if (image.width <= 0 || image.height <= 0 || image.pixels == nullptr ||
+      (image.halfFloat && !halfFile)) {
+    throw Error(
+        ErrorCode::Internal,
+        fmt::format("malformed linear image view: {}x{}, {} pixels for a {} file", image.width,
+                    image.height, image.halfFloat ? "half" : "float", halfFile ? "half" : "float"));
+  }
+}
+
+const std::array<float, 256>& srgbThresholds() { return srgbEncoder().thresholds(); }
 
 void checkPngCompression(int level) {
   if (level < 0 || level > 9) {
@@ -612,6 +636,17 @@ std::vector<std::uint8_t> encodeImage(const FloatImage& linear, const OutputSett
   }
   throw Error(ErrorCode::Internal, "unknown output image format");
 }
+
+namespace image_io {
+
+std::vector<std::uint8_t> encodeExr(const FloatImage& image, bool halfFloat,
+                                    const ImageMetadata& metadata) {
+  detail::checkFloatImage(image);
+  return encodeExr(LinearRgbaView{image.width, image.height, false, image.rgba.data()}, halfFloat,
+                   metadata);
+}
+
+}  // namespace image_io
 
 const char* mimeType(ImageFormat format) {
   return format == ImageFormat::Png ? "image/png" : "image/x-exr";

@@ -3,6 +3,7 @@
 // makes the two backends accept and reject the same inputs.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -16,13 +17,6 @@ namespace lgh::image_io::detail {
 // allocated: a 20-byte PNG header can claim a 4 GiB image.
 inline constexpr std::int64_t kMaxDecodeDimension = 16384;
 inline constexpr std::int64_t kMaxDecodePixels = 256LL * 1024 * 1024;
-
-// The same zlib strategy and row filters in both backends, so that at the same zlib level they
-// write the same bytes. OpenImageIO always uses zlib's default strategy (libpng would pick
-// Z_FILTERED); the filters are libpng's PNG_ALL_FILTERS bit set, spelled out so this header does
-// not need png.h.
-inline constexpr int kPngZlibStrategy = 0;  // Z_DEFAULT_STRATEGY
-inline constexpr int kPngFilters = 0x08 | 0x10 | 0x20 | 0x40 | 0x80;
 
 // `text` with bytes outside printable ASCII replaced by '?': messages quoting damaged files (chunk
 // and attribute names, library errors) end up in JSON error bodies, which need valid UTF-8.
@@ -51,6 +45,9 @@ void checkExrHeader(const std::uint8_t* data, std::size_t size, const std::strin
 
 // Throws Internal: a malformed in-memory image is a caller bug, not bad user input.
 void checkImage8(const Image8& image);
+void checkImage8View(const Image8View& image);
+// A half-float view only makes a half file (nothing widens halves to floats on the way out).
+void checkLinearRgbaView(const LinearRgbaView& image, bool halfFile);
 void checkPngCompression(int level);
 void checkFloatImage(const FloatImage& image);
 
@@ -69,6 +66,12 @@ ImageMetadata withCaptureDate(const ImageMetadata& metadata);
 // trailing or doubled spaces (PNG keyword rules, applied to EXR too), reserved, or a value with a
 // NUL byte.
 void checkMetadata(const ImageMetadata& metadata, MetadataFormat format);
+
+// threshold[k] is the smallest float whose sRGB encoding rounds to code k + 1: the inverse OETF of
+// (k + 0.5) / 255, rounded up to a float; threshold[255] is +infinity. A linear value in [0, 1]
+// encodes to the number of thresholds at or below it. The GPU's display transform counts against
+// the same table (glsl/include/display_transform.glsl), so both round alike.
+const std::array<float, 256>& srgbThresholds();
 
 // 1..4 interleaved 8-bit channels (grey, grey+alpha, RGB, RGBA) to RGBA; alpha 255 when absent.
 Image8 expandToRgba8(int width, int height, int channels, const std::uint8_t* pixels);

@@ -1,27 +1,94 @@
 #include "passes/composite_pass.hpp"
 
-#include <algorithm>
-
 #include "gl/shader_library.hpp"
 #include "gl/slots.hpp"
+#include "image/image_common.hpp"
 
 namespace lgh {
+namespace {
 
-CompositePass::CompositePass()
-    : program_(gl::buildProgram(
-          {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "composite.frag"}})) {}
+int toneMapCode(ToneMap toneMap) {
+  switch (toneMap) {
+    case ToneMap::None:
+      return 0;  // LGH_TONE_MAP_NONE
+    case ToneMap::Reinhard:
+      return 1;  // LGH_TONE_MAP_REINHARD
+    case ToneMap::Aces:
+      return 2;  // LGH_TONE_MAP_ACES
+  }
+  return 0;
+}
 
-void CompositePass::run(const OutputSettings& output, bool hasIndirect, GLuint shadowRatio,
-                        FrameTargets& targets) {
-  glBindFramebuffer(GL_FRAMEBUFFER, targets.finalFramebuffer.id());
+}  // namespace
+
+void setDisplayUniforms(GLuint program, const OutputSettings& output, int height) {
+  glProgramUniform1i(program, glGetUniformLocation(program, "uHeight"), height);
+  glProgramUniform1i(program, glGetUniformLocation(program, "uToneMap"),
+                     toneMapCode(output.toneMap));
+  glProgramUniform1f(program, glGetUniformLocation(program, "uExposure"), output.exposure);
+}
+
+gl::Program buildDisplayProgram(const char* fragmentShader, const std::string& defines,
+                                bool display) {
+  gl::Program program = gl::buildProgram(
+      {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragmentShader}},
+      defines + (display ? "#define LGH_DISPLAY_OUTPUT 1\n" : ""));
+  if (display) {
+    const auto& thresholds = image_io::detail::srgbThresholds();
+    glProgramUniform1fv(program.id(), glGetUniformLocation(program.id(), "uSrgbThresholds"), 255,
+                        thresholds.data());
+  }
+  return program;
+}
+
+OutputPixels outputPixelsFor(const OutputSettings& output) {
+  switch (output.format) {
+    case ImageFormat::Png:
+      return OutputPixels::Display8;
+    case ImageFormat::ExrHalf:
+      return OutputPixels::LinearHalf;
+    case ImageFormat::ExrFloat:
+      return OutputPixels::LinearFloat;
+  }
+  return OutputPixels::Display8;
+}
+
+const gl::Program& CompositePass::program(OutputPixels pixels, bool toScene) {
+  if (toScene) {
+    if (!scene_) {
+      scene_.emplace(buildDisplayProgram("composite.frag", "#define LGH_SCENE_TARGET 1\n", false));
+    }
+    return *scene_;
+  }
+  const bool display = pixels == OutputPixels::Display8;
+  std::optional<gl::Program>& slot = display ? display_ : linear_;
+  if (!slot) slot.emplace(buildDisplayProgram("composite.frag", "", display));
+  return *slot;
+}
+
+void CompositePass::run(const OutputSettings& output, OutputPixels pixels, bool hasIndirect,
+                        GLuint shadowRatio, FrameTargets& targets) {
+  draw(output, pixels, false, hasIndirect, shadowRatio, targets);
+}
+
+void CompositePass::runToScene(const OutputSettings& output, bool hasIndirect, GLuint shadowRatio,
+                               FrameTargets& targets) {
+  draw(output, OutputPixels::LinearFloat, true, hasIndirect, shadowRatio, targets);
+}
+
+void CompositePass::draw(const OutputSettings& output, OutputPixels pixels, bool toScene,
+                         bool hasIndirect, GLuint shadowRatio, FrameTargets& targets) {
+  const OutputTarget& target = toScene ? targets.sceneLinear() : targets.output(pixels);
+  glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
   glViewport(0, 0, targets.width, targets.height);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
-  const GLuint program = program_.id();
+  const GLuint program = this->program(pixels, toScene).id();
   glUseProgram(program);
   glProgramUniform1i(program, glGetUniformLocation(program, "uHasIndirect"), hasIndirect ? 1 : 0);
   glProgramUniform1i(program, glGetUniformLocation(program, "uHasShadowRatio"),
                      shadowRatio != 0 ? 1 : 0);
+  setDisplayUniforms(program, output, targets.height);
   glBindTextureUnit(LGH_UNIT_COMPOSITE_RATIO, shadowRatio);
   const float alpha = output.transparentBackground ? 0.0F : 1.0F;
   const auto& bg = output.background;
@@ -35,22 +102,41 @@ void CompositePass::run(const OutputSettings& output, bool hasIndirect, GLuint s
   glBindVertexArray(0);
 }
 
-FloatImage readbackFinal(const FrameTargets& targets) {
+void packOutput(const FrameTargets& targets, OutputPixels pixels, FramePixels::Layout layout,
+                GLuint packBuffer) {
+  GLenum format = GL_RGBA;
+  GLenum type = GL_FLOAT;
+  switch (layout) {
+    case FramePixels::Layout::Rgb8:
+      format = GL_RGB_INTEGER;
+      type = GL_UNSIGNED_BYTE;
+      break;
+    case FramePixels::Layout::Rgba8:
+      format = GL_RGBA_INTEGER;
+      type = GL_UNSIGNED_BYTE;
+      break;
+    case FramePixels::Layout::RgbaHalf:
+      type = GL_HALF_FLOAT;
+      break;
+    case FramePixels::Layout::RgbaFloat:
+      break;
+  }
+  const FramePixels probe{targets.width, targets.height, layout, nullptr};
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);  // rows tightly packed, whatever their length
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, packBuffer);
+  glGetTextureImage(targets.outputs[static_cast<int>(pixels)].texture.id(), 0, format, type,
+                    static_cast<GLsizei>(probe.size()), nullptr);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+}
+
+FloatImage readLinearOutput(FrameTargets& targets) {
   FloatImage image;
   image.width = targets.width;
   image.height = targets.height;
-  const size_t rowFloats = static_cast<size_t>(targets.width) * 4;
-  image.rgba.resize(rowFloats * static_cast<size_t>(targets.height));
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTextureImage(targets.final.id(), 0, GL_RGBA, GL_FLOAT,
+  image.rgba.resize(static_cast<std::size_t>(targets.width) * targets.height * 4);
+  glGetTextureImage(targets.output(OutputPixels::LinearFloat).texture.id(), 0, GL_RGBA, GL_FLOAT,
                     static_cast<GLsizei>(image.rgba.size() * sizeof(float)), image.rgba.data());
-  // GL's rows run bottom-up; images here run top-down. Flipping in place spares a second
-  // frame-sized buffer (15 MB at 1280x720) and its page faults.
-  for (int top = 0, bottom = targets.height - 1; top < bottom; ++top, --bottom) {
-    float* topRow = image.rgba.data() + rowFloats * static_cast<size_t>(top);
-    std::swap_ranges(topRow, topRow + rowFloats,
-                     image.rgba.data() + rowFloats * static_cast<size_t>(bottom));
-  }
   return image;
 }
 

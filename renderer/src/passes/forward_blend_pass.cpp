@@ -18,18 +18,24 @@ bool ForwardBlendPass::needed(const MaterialTable& materials, const GpuScene& gp
                      });
 }
 
-void ForwardBlendPass::bindTargets(const FrameTargets& targets) {
-  if (boundColor_ == targets.final.id() && boundDepth_ == targets.gbuffer.depth.id()) return;
+void ForwardBlendPass::bindTargets(FrameTargets& targets) {
+  targets.sceneLinear();
+  if (boundColor_ == targets.scene.texture.id() && boundDepth_ == targets.gbuffer.depth.id() &&
+      boundWidth_ == targets.width && boundHeight_ == targets.height) {
+    return;
+  }
   framebuffer_ = gl::Framebuffer();
-  glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, targets.final.id(), 0);
+  glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, targets.scene.texture.id(), 0);
   glNamedFramebufferTexture(framebuffer_.id(), GL_DEPTH_ATTACHMENT, targets.gbuffer.depth.id(), 0);
   const GLenum status = glCheckNamedFramebufferStatus(framebuffer_.id(), GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
     throw Error(ErrorCode::Internal,
                 "framebuffer incomplete (status " + std::to_string(status) + ")", "forward blend");
   }
-  boundColor_ = targets.final.id();
+  boundColor_ = targets.scene.texture.id();
   boundDepth_ = targets.gbuffer.depth.id();
+  boundWidth_ = targets.width;
+  boundHeight_ = targets.height;
 }
 
 int ForwardBlendPass::run(const Inputs& inputs, SurfacePrograms& programs, GpuScene& gpuScene,

@@ -1,8 +1,10 @@
-// Forward pass of blended surfaces (glTF alphaMode BLEND), after the composite.
+// Forward pass of blended surfaces (glTF alphaMode BLEND), after the composite into the linear
+// scene target and before the display pass.
 //   inputs:  GpuScene, the frame's materials, camera, the analytic lights and the ambient term,
 //            the G-buffer's depth (blended surfaces hide behind opaque ones, and write no depth)
-//   outputs: FrameTargets::final, blended "over" (colour by alpha, coverage accumulated in alpha)
-//   shaders: the surface programs' forward variants: glsl/gbuffer.vert [+ geometry/tessellation
+//   outputs: FrameTargets::scene (linear light, rows as GL stores them), blended "over" (colour by
+//   alpha, coverage accumulated in alpha) shaders: the surface programs' forward variants:
+//   glsl/gbuffer.vert [+ geometry/tessellation
 //            stages] + glsl/forward_blend.frag (the G-buffer pass's material sampling, the direct
 //            lighting's light terms)
 // Surfaces are sorted back to front by the distance of their bounds' centres from the camera: per
@@ -39,11 +41,13 @@ class ForwardBlendPass {
           FrameTargets& targets);
 
  private:
-  void bindTargets(const FrameTargets& targets);
+  void bindTargets(FrameTargets& targets);
 
   gl::Framebuffer framebuffer_;
   GLuint boundColor_ = 0;
   GLuint boundDepth_ = 0;
+  int boundWidth_ = 0;  // a resize may hand out the old names again
+  int boundHeight_ = 0;
 };
 
 }  // namespace lgh

@@ -63,8 +63,31 @@ void FrameTargets::resize(int newWidth, int newHeight) {
   directFramebuffer = singleTargetFramebuffer(direct, "direct");
   indirect = makeTarget(GL_RGBA16F, width, height);
   indirectFramebuffer = singleTargetFramebuffer(indirect, "indirect");
-  final = makeTarget(GL_RGBA32F, width, height);
-  finalFramebuffer = singleTargetFramebuffer(final, "final");
+  for (OutputTarget& target : outputs) {
+    target.framebuffer.reset();
+    target.texture.reset();
+  }
+  scene.framebuffer.reset();
+  scene.texture.reset();
+}
+
+OutputTarget& FrameTargets::output(OutputPixels pixels) {
+  static constexpr GLenum kFormats[3] = {GL_RGBA8UI, GL_RGBA16F, GL_RGBA32F};
+  const auto index = static_cast<std::size_t>(pixels);
+  OutputTarget& target = outputs[index];
+  if (target.texture.id() == 0) {
+    target.texture = makeTarget(kFormats[index], width, height);
+    target.framebuffer = singleTargetFramebuffer(target.texture, "output");
+  }
+  return target;
+}
+
+OutputTarget& FrameTargets::sceneLinear() {
+  if (scene.texture.id() == 0) {
+    scene.texture = makeTarget(GL_RGBA32F, width, height);
+    scene.framebuffer = singleTargetFramebuffer(scene.texture, "scene");
+  }
+  return scene;
 }
 
 }  // namespace lgh

@@ -19,6 +19,14 @@ struct GBufferTargets {
   gl::Framebuffer framebuffer;
 };
 
+// What a frame is read back as, and the target the composite pass writes it to.
+enum class OutputPixels { Display8, LinearHalf, LinearFloat };
+
+struct OutputTarget {
+  gl::Texture texture = gl::Texture::empty();
+  gl::Framebuffer framebuffer = gl::Framebuffer::empty();
+};
+
 struct FrameTargets {
   int width = 0;
   int height = 0;
@@ -27,11 +35,18 @@ struct FrameTargets {
   gl::Framebuffer directFramebuffer;
   gl::Texture indirect{GL_TEXTURE_2D};  // RGBA16F: LGH lighting radiance
   gl::Framebuffer indirectFramebuffer;
-  gl::Texture final{GL_TEXTURE_2D};  // RGBA32F: linear composite
-  gl::Framebuffer finalFramebuffer;
+  // The composite's output, rows turned over (GL's first row is the image's top), made on first
+  // use at each size: RGBA8UI display codes, RGBA16F or RGBA32F linear light.
+  OutputTarget outputs[3];
+  // RGBA32F linear light, rows as GL stores them, made on first use at each size: frames with
+  // blended surfaces are composited here, the forward blend pass draws over it (depth-tested
+  // against the G-buffer's depth) and the display pass turns it into output(pixels).
+  OutputTarget scene;
 
   // Reallocates every target for this size (no-op when unchanged).
   void resize(int newWidth, int newHeight);
+  OutputTarget& output(OutputPixels pixels);
+  OutputTarget& sceneLinear();
 };
 
 }  // namespace lgh

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "lgh/error.hpp"
+#include "lgh/request.hpp"
 #include "request/json_pointer.hpp"
 
 namespace lgh {
@@ -104,7 +105,12 @@ constexpr int kNumberOverflowId = 406;  // nlohmann's out_of_range.406
 
 }  // namespace
 
-json parseJsonText(const std::string& text) {
+json parseRequestJson(const std::string& text) { return parseJsonText(text, kRequestJsonLimits); }
+
+json parseJsonText(const std::string& text, const JsonShapeLimits& shapeLimits) {
+  if (const auto excess = findJsonShapeExcess(text, shapeLimits)) {
+    throw Error(ErrorCode::TooLarge, "the JSON " + excess->describe(shapeLimits));
+  }
   try {
     return json::parse(text);
   } catch (const json::parse_error& error) {

@@ -31,16 +31,17 @@ namespace {
 using json = nlohmann::json;
 using Vec3 = std::array<float, 3>;
 
-// --- Numbers the schema cannot refuse --------------------------------------------------------
+// --- Nesting and numbers the schema cannot refuse ----------------------------------------------
 
 // JSON text cannot hold NaN or infinity, but a json built in code can; and a finite double like
-// 1e300 becomes infinity as the float the renderer uses. It runs before the schema has bounded
-// the nesting depth, so it walks without recursion, and each node keeps only its parent's index
-// and its own token: the pointer is built for the offending value alone.
+// 1e300 becomes infinity as the float the renderer uses. It runs before anything recursive sees
+// the document (a json built in code, or parsed from a multipart part, has not been measured as
+// text), so it walks without recursion, bounds the nesting, and each node keeps only its parent's
+// index and its own token: the pointer is built for the offending value alone.
 class NumberScan {
  public:
   void run(const json& document) {
-    nodes_.push_back({&document, kNoParent, ""});
+    nodes_.push_back({&document, kNoParent, "", 0});
     for (std::size_t next = 0; next < nodes_.size(); ++next) visit(next);
   }
 
@@ -50,19 +51,30 @@ class NumberScan {
     const json* value;
     std::size_t parent;
     std::string token;
+    std::size_t depth;  // containers around this value
   };
 
   void visit(std::size_t index) {
     const json& value = *nodes_[index].value;
+    const std::size_t depth = nodes_[index].depth;
+    if ((value.is_object() || value.is_array()) && depth >= kRequestJsonLimits.maxDepth) {
+      throw Error(ErrorCode::TooLarge,
+                  fmt::format("the request JSON nests deeper than the limit of {} levels of "
+                              "arrays and objects",
+                              kRequestJsonLimits.maxDepth),
+                  pointerOf(index));
+    }
     if (value.is_number_float()) {
       checkNumber(value.get<double>(), index);
     } else if (value.is_number_unsigned()) {
       checkUnsigned(value.get<std::uint64_t>(), index);
     } else if (value.is_object()) {
-      for (const auto& [key, member] : value.items()) nodes_.push_back({&member, index, key});
+      for (const auto& [key, member] : value.items()) {
+        nodes_.push_back({&member, index, key, depth + 1});
+      }
     } else if (value.is_array()) {
       for (std::size_t i = 0; i < value.size(); ++i) {
-        nodes_.push_back({&value[i], index, std::to_string(i)});
+        nodes_.push_back({&value[i], index, std::to_string(i), depth + 1});
       }
     }
   }
@@ -518,7 +530,7 @@ RenderRequest parseRenderRequest(const json& request, const RequestLimits& limit
 }
 
 RenderRequest parseRenderRequest(const std::string& text, const RequestLimits& limits) {
-  return parseRenderRequest(parseJsonText(text), limits);
+  return parseRenderRequest(parseRequestJson(text), limits);
 }
 
 }  // namespace lgh

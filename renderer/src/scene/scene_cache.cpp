@@ -7,10 +7,12 @@
 
 #include "core/stopwatch.hpp"
 #include "gl/gl_api.hpp"
+#include "lgh/error.hpp"
 #include "scene/asset_path.hpp"
 #include "scene/atrium_scene.hpp"
 #include "scene/demo_scene.hpp"
 #include "scene/gltf/gltf_loader.hpp"
+#include "scene/worker/scene_worker.hpp"
 
 namespace lgh {
 namespace {
@@ -27,10 +29,15 @@ std::uint64_t fnv1a(const std::vector<std::uint8_t>& bytes) {
 }  // namespace
 
 SceneCache::SceneCache(const RendererOptions& options) : options_(options) {
+  if (!options_.sceneWorker.executable.empty()) {
+    worker_ = std::make_unique<worker::SceneWorker>(options_.sceneWorker);
+  }
   GLfloat anisotropy = 1.0F;
   glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &anisotropy);
   maxAnisotropy_ = anisotropy;
 }
+
+SceneCache::~SceneCache() = default;
 
 namespace {
 
@@ -89,23 +96,63 @@ std::string SceneCache::sourceKey(const SceneSource& source) const {
   return {};
 }
 
-Scene SceneCache::load(const SceneSource& source, const SceneLoadOptions& options) const {
-  SceneLoadLimits limits;
-  limits.maxTriangles = options_.maxTriangles;
-  limits.maxTextureSize = options_.maxTextureSize;
-  switch (source.kind) {
-    case SceneSource::Kind::Builtin:
-      return source.builtin == BuiltinScene::Atrium ? makeAtriumScene() : makeDemoScene();
-    case SceneSource::Kind::InlineGlb:
-      return loadGlbBytes(source.glbBytes,
-                          source.displayName.empty() ? "inline.glb" : source.displayName, limits,
-                          options);
-    case SceneSource::Kind::UploadedGltf:
-      return loadGltfFromMemory(source.gltfFileName, source.uploadedFiles, limits, options);
-    case SceneSource::Kind::AssetPath:
-      return loadGltfFile(options_.assetRoot, source.assetPath, limits, options);
+namespace {
+
+// Built-in scenes are made here; assets are parsed by the scene parser worker when there is one
+// (untrusted bytes never parsed in this process), else here.
+Scene loadScene(const RendererOptions& rendererOptions, worker::SceneWorker* worker,
+                const SceneSource& source, const SceneLoadOptions& options) {
+  if (source.kind == SceneSource::Kind::Builtin) {
+    return source.builtin == BuiltinScene::Atrium ? makeAtriumScene() : makeDemoScene();
   }
-  return makeDemoScene();
+  SceneLoadLimits limits;
+  limits.maxTriangles = rendererOptions.maxTriangles;
+  limits.maxTextureSize = rendererOptions.maxTextureSize;
+  limits.maxTextureBytes = rendererOptions.maxTextureBytes;
+  if (worker != nullptr) return worker->load({source, rendererOptions.assetRoot, limits, options});
+  return loadSceneSource(source, rendererOptions.assetRoot, limits, options);
+}
+
+}  // namespace
+
+SceneCache::Parsed SceneCache::parse(const RendererOptions& rendererOptions,
+                                     worker::SceneWorker* worker, const SceneSource& source,
+                                     const SceneLoadOptions& options) {
+  const Stopwatch timer;
+  Parsed parsed{loadScene(rendererOptions, worker, source, options), 0.0};
+  parsed.loadMs = timer.elapsedMs();
+  return parsed;
+}
+
+void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& options) {
+  std::string key;
+  try {
+    key = keyFor(source, options);
+  } catch (const Error&) {
+    return;  // a bad path: get() reports it
+  }
+  if (key.empty() || key == "demo" || prefetches_.contains(key)) return;
+  for (const Slot& slot : slots_) {
+    if (slot.key == key) return;
+  }
+  // When full, finished parses nobody asked for yet make room (their request was cancelled, or
+  // comes later than the hints after it).
+  if (prefetches_.size() >= kMaxPrefetches) {
+    std::erase_if(prefetches_, [](const auto& entry) {
+      return entry.second.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+    });
+  }
+  if (prefetches_.size() >= kMaxPrefetches) return;
+  try {
+    prefetches_.emplace(
+        key, std::async(std::launch::async,
+                        [rendererOptions = options_, worker = worker_.get(), source, options] {
+                          return parse(rendererOptions, worker, source, options);
+                        }));
+  } catch (const std::system_error& error) {
+    spdlog::warn("scene cache: no thread for a prefetch ({}); the scene is parsed when drawn",
+                 error.what());
+  }
 }
 
 SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOptions& options) {
@@ -121,10 +168,18 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
     return lookup;
   }
   ++misses_;
-  const Stopwatch loadTimer;
   auto entry = std::make_shared<CachedScene>();
-  entry->scene = load(source, options);
-  lookup.loadMs = loadTimer.elapsedMs();
+  Parsed parsed;
+  if (auto pending = prefetches_.find(key); pending != prefetches_.end()) {
+    std::future<Parsed> parsing = std::move(pending->second);
+    prefetches_.erase(pending);
+    parsed = parsing.get();  // rethrows the parse's error
+    lookup.prefetched = true;
+  } else {
+    parsed = parse(options_, worker_.get(), source, options);
+  }
+  entry->scene = std::move(parsed.scene);
+  lookup.loadMs = parsed.loadMs;
   const Stopwatch uploadTimer;
   entry->gpu = std::make_unique<GpuScene>(
       entry->scene, GpuSceneOptions{maxAnisotropy_, options.textureCompression});

@@ -5,7 +5,9 @@
 #pragma once
 
 #include <cstdint>
+#include <future>
 #include <list>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -17,6 +19,10 @@
 #include "vk/shadow_tracer.hpp"
 
 namespace lgh {
+
+namespace worker {
+class SceneWorker;
+}
 
 // The acceleration structures of a cached scene, built by the first shadowed frame that draws it
 // and kept while the tracer that built them lives (`epoch`: ShadowDevice::epoch()).
@@ -51,27 +57,46 @@ struct CachedScene {
 class SceneCache {
  public:
   explicit SceneCache(const RendererOptions& options);
+  ~SceneCache();
+  SceneCache(const SceneCache&) = delete;
+  SceneCache& operator=(const SceneCache&) = delete;
 
   struct Lookup {
     std::shared_ptr<CachedScene> entry;
     bool hit = false;
-    double loadMs = 0.0;
+    double loadMs = 0.0;  // parsing, here or on a prefetch thread
     double uploadMs = 0.0;
+    bool prefetched = false;  // parsed by prefetch() ahead of this get()
   };
   // Loads on a miss; throws lgh::Error for bad assets (nothing is cached then). The options (pose,
   // material variant, extension tolerance) are part of the key: each pose is its own entry.
   Lookup get(const SceneSource& source, const SceneLoadOptions& options = {});
   SceneCacheStats stats() const;
 
+  // Starts parsing `source` on a thread of its own unless it is cached or already being parsed;
+  // the get() that asks for it then waits for that parse instead of parsing (its errors come
+  // from that get()). The upload stays for get(), on the GL thread. At most kMaxPrefetches parses
+  // run at once; a hint beyond that is dropped.
+  void prefetch(const SceneSource& source, const SceneLoadOptions& options = {});
+  static constexpr std::size_t kMaxPrefetches = 2;
+
   // Content key of a source ("" when it cannot be keyed; then it is never cached).
   std::string keyFor(const SceneSource& source, const SceneLoadOptions& options = {}) const;
 
  private:
-  Scene load(const SceneSource& source, const SceneLoadOptions& options) const;
+  struct Parsed {
+    Scene scene;
+    double loadMs = 0.0;
+  };
+  // In the scene parser worker when there is one (untrusted bytes never parsed here).
+  static Parsed parse(const RendererOptions& rendererOptions, worker::SceneWorker* worker,
+                      const SceneSource& source, const SceneLoadOptions& options);
   std::string sourceKey(const SceneSource& source) const;
   void evictOverBudget();
-
   RendererOptions options_;
+  std::unique_ptr<worker::SceneWorker> worker_;
+  // By key. Declared after worker_ so that its parses (which may use the worker) end first.
+  std::map<std::string, std::future<Parsed>> prefetches_;
   float maxAnisotropy_ = 1.0F;
   struct Slot {
     std::string key;

@@ -1,6 +1,7 @@
 #include "scene/gltf/accessor_reader.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <utility>
 
@@ -222,7 +223,61 @@ std::vector<float> AccessorReader::readFloats(int index, Semantic semantic,
     values[slot] = toFloat(value, span.componentType, span.normalized);
   });
   *components = span.components;
+  checkFinite(values, index, owner, span.components);
+  checkDeclaredBounds(values, index, semantic, owner, span);
   return values;
+}
+
+void AccessorReader::checkFinite(const std::vector<float>& values, int index,
+                                 const std::string& owner, int components) const {
+  const auto bad =
+      std::find_if(values.begin(), values.end(), [](float value) { return !std::isfinite(value); });
+  if (bad == values.end()) return;
+  const auto slot = static_cast<std::size_t>(bad - values.begin());
+  invalid(ctx_, fmt::format("{}: /accessors/{} holds a non-finite value (NaN or Inf) at element "
+                            "{}",
+                            owner, index, slot / static_cast<std::size_t>(components)));
+}
+
+// accessor.min and max describe the data; lghd never reads them (it computes bounds from the
+// data), so declared bounds that are wrong or missing cannot mislead it: a warning, as the
+// Khronos validator reports them as errors.
+void AccessorReader::checkDeclaredBounds(const std::vector<float>& values, int index,
+                                         Semantic semantic, const std::string& owner,
+                                         const ElementSpan& span) const {
+  const tinygltf::Accessor& accessor = accessorAt(index, owner);
+  const auto components = static_cast<std::size_t>(span.components);
+  if (accessor.minValues.empty() || accessor.maxValues.empty()) {
+    if (semantic == Semantic::Position) {
+      ctx_.warnOnce(
+          fmt::format("{}: /accessors/{} declares no min/max, which POSITION needs; "
+                      "bounds computed from the data",
+                      owner, index));
+    }
+    return;
+  }
+  // Normalized integers declare their bounds in integer units; only plain values compare.
+  if (span.normalized || accessor.minValues.size() != components ||
+      accessor.maxValues.size() != components || values.empty()) {
+    return;
+  }
+  for (std::size_t c = 0; c < components; ++c) {
+    float low = values[c];
+    float high = values[c];
+    for (std::size_t i = c; i < values.size(); i += components) {
+      low = std::min(low, values[i]);
+      high = std::max(high, values[i]);
+    }
+    if (low != static_cast<float>(accessor.minValues[c]) ||
+        high != static_cast<float>(accessor.maxValues[c])) {
+      ctx_.warnOnce(
+          fmt::format("{}: /accessors/{} declares min/max that do not match its data "
+                      "(component {}: declared {} .. {}, actual {} .. {}); bounds "
+                      "computed from the data",
+                      owner, index, c, accessor.minValues[c], accessor.maxValues[c], low, high));
+      return;
+    }
+  }
 }
 
 std::vector<std::uint32_t> AccessorReader::readIndices(int index, const std::string& owner) const {
@@ -254,14 +309,14 @@ std::pair<const std::uint8_t*, std::size_t> AccessorReader::bufferViewBytes(
   }
   const tinygltf::BufferView& view = model_.bufferViews[static_cast<std::size_t>(index)];
   if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model_.buffers.size()) {
-    invalid(ctx_, fmt::format("{}: bufferView {} names buffer {}, which does not exist", owner,
+    invalid(ctx_, fmt::format("{}: /bufferViews/{} names buffer {}, which does not exist", owner,
                               index, view.buffer));
   }
   const std::vector<unsigned char>& data =
       model_.buffers[static_cast<std::size_t>(view.buffer)].data;
   if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) {
     invalid(ctx_,
-            fmt::format("{}: bufferView {} (offset {}, length {}) lies outside buffer {} "
+            fmt::format("{}: /bufferViews/{} (offset {}, length {}) lies outside /buffers/{} "
                         "({} bytes)",
                         owner, index, view.byteOffset, view.byteLength, view.buffer, data.size()));
   }
@@ -274,7 +329,7 @@ void AccessorReader::checkFormat(const tinygltf::Accessor& accessor, int index, 
       formatAllowed(semantic, accessor.componentType, accessor.normalized, quantized_)) {
     return;
   }
-  invalid(ctx_, fmt::format("{}: accessor {} is {} of {}{}; glTF requires {}", owner, index,
+  invalid(ctx_, fmt::format("{}: /accessors/{} is {} of {}{}; glTF requires {}", owner, index,
                             typeName(accessor.type), accessor.normalized ? "normalized " : "",
                             componentTypeName(accessor.componentType), allowedFormats(semantic)));
 }
@@ -296,7 +351,7 @@ AccessorReader::ElementSpan AccessorReader::checkedSpan(int index, Semantic sema
       model_.bufferViews[static_cast<std::size_t>(accessor.bufferView)].byteStride;
   span.stride = declaredStride != 0 ? declaredStride : elementSize;
   if (span.stride < elementSize) {
-    invalid(ctx_, fmt::format("{}: accessor {} has byteStride {} smaller than its {}-byte "
+    invalid(ctx_, fmt::format("{}: /accessors/{} has byteStride {} smaller than its {}-byte "
                               "elements",
                               owner, index, span.stride, elementSize));
   }
@@ -304,8 +359,8 @@ AccessorReader::ElementSpan AccessorReader::checkedSpan(int index, Semantic sema
   const bool fits = accessor.byteOffset <= length && elementSize <= length - accessor.byteOffset &&
                     span.count - 1 <= (length - accessor.byteOffset - elementSize) / span.stride;
   if (!fits) {
-    invalid(ctx_, fmt::format("{}: accessor {} ({} elements of {} bytes, stride {}, offset {}) "
-                              "reads past the end of bufferView {} ({} bytes)",
+    invalid(ctx_, fmt::format("{}: /accessors/{} ({} elements of {} bytes, stride {}, offset {}) "
+                              "reads past the end of /bufferViews/{} ({} bytes)",
                               owner, index, span.count, elementSize, span.stride,
                               accessor.byteOffset, accessor.bufferView, length));
   }
@@ -317,7 +372,7 @@ void AccessorReader::checkCount(std::size_t count, const std::string& owner, int
   const std::size_t maxTriangles = ctx_.limits.maxTriangles;
   const std::size_t limit = maxTriangles < SIZE_MAX / 4 ? 3 * maxTriangles + 3 : SIZE_MAX;
   if (count > limit) {
-    tooLarge(ctx_, fmt::format("{}: accessor {} has {} elements, more than the triangle limit "
+    tooLarge(ctx_, fmt::format("{}: /accessors/{} has {} elements, more than the triangle limit "
                                "allows ({})",
                                owner, index, count, limit));
   }
@@ -345,12 +400,12 @@ void AccessorReader::applySparse(int index, const ElementSpan& span, const std::
   if (sparse.count <= 0 || static_cast<std::size_t>(sparse.count) > span.count ||
       sparse.indices.byteOffset < 0 || sparse.values.byteOffset < 0) {
     invalid(ctx_,
-            fmt::format("{}: sparse accessor {} has an invalid count or offset", owner, index));
+            fmt::format("{}: /accessors/{}/sparse has an invalid count or offset", owner, index));
   }
   const auto count = static_cast<std::size_t>(sparse.count);
   const int indexType = sparse.indices.componentType;
   if (!formatAllowed(Semantic::Indices, indexType, false, false)) {
-    invalid(ctx_, fmt::format("{}: sparse accessor {} has indices of {}", owner, index,
+    invalid(ctx_, fmt::format("{}: /accessors/{}/sparse has indices of {}", owner, index,
                               componentTypeName(indexType)));
   }
   const std::size_t elementSize = componentSize(span.componentType) * span.components;
@@ -364,7 +419,7 @@ void AccessorReader::applySparse(int index, const ElementSpan& span, const std::
     const auto target =
         static_cast<std::size_t>(readComponent(indices + i * componentSize(indexType), indexType));
     if (target >= span.count) {
-      invalid(ctx_, fmt::format("{}: sparse accessor {} replaces element {} of {}", owner, index,
+      invalid(ctx_, fmt::format("{}: /accessors/{}/sparse replaces element {} of {}", owner, index,
                                 target, span.count));
     }
     for (std::size_t c = 0; c < components; ++c) {
@@ -380,7 +435,8 @@ const std::uint8_t* AccessorReader::sparseRegion(int view, int offset, std::size
   const auto [bytes, length] = bufferViewBytes(view, owner);
   const auto start = static_cast<std::size_t>(offset);
   if (start > length || count > (length - start) / itemSize) {
-    invalid(ctx_, fmt::format("{}: sparse data reads past the end of bufferView {}", owner, view));
+    invalid(ctx_,
+            fmt::format("{}: sparse data reads past the end of /bufferViews/{}", owner, view));
   }
   return bytes + start;
 }

@@ -73,6 +73,13 @@ class AccessorReader {
   const std::uint8_t* sparseRegion(int view, int offset, std::size_t count, std::size_t itemSize,
                                    const std::string& owner) const;
 
+  // NaN or Inf anywhere in the values fails the load (the validator's ACCESSOR_INVALID_FLOAT).
+  void checkFinite(const std::vector<float>& values, int index, const std::string& owner,
+                   int components) const;
+  // Declared min/max that do not match the data, or missing on POSITION: a warning.
+  void checkDeclaredBounds(const std::vector<float>& values, int index, Semantic semantic,
+                           const std::string& owner, const ElementSpan& span) const;
+
   const tinygltf::Model& model_;
   LoadContext& ctx_;
   bool quantized_;

@@ -120,7 +120,7 @@ AnimationPose sampleAnimation(const tinygltf::Model& model, LoadContext& ctx,
         "/scene/animation/index");
   }
   const tinygltf::Animation& animation = model.animations[static_cast<std::size_t>(index)];
-  const std::string name = label("animation", index, animation.name);
+  const std::string name = label("animations", index, animation.name);
   AnimationPose pose;
   for (std::size_t c = 0; c < animation.channels.size(); ++c) {
     const tinygltf::AnimationChannel& channel = animation.channels[c];

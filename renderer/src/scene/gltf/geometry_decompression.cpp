@@ -173,7 +173,8 @@ std::string stringMember(const tinygltf::Value& object, const char* key) {
 
 void decodeMeshoptView(tinygltf::Model& model, int viewIndex, const tinygltf::Value& extension,
                        LoadContext& ctx) {
-  const std::string owner = fmt::format("bufferView {} (EXT_meshopt_compression)", viewIndex);
+  const std::string owner =
+      fmt::format("/bufferViews/{}/extensions/EXT_meshopt_compression", viewIndex);
   const int bufferIndex = intMember(extension, "buffer", -1);
   const int offset = intMember(extension, "byteOffset", 0);
   const int length = intMember(extension, "byteLength", -1);
@@ -265,8 +266,7 @@ void decompressGeometry(tinygltf::Model& model, LoadContext& ctx) {
       const auto it = primitive.extensions.find("KHR_draco_mesh_compression");
       if (it == primitive.extensions.end() || !it->second.IsObject()) continue;
       const tinygltf::Value extension = it->second;
-      const std::string owner = fmt::format(
-          "{} primitive {}", label("mesh", static_cast<int>(m), model.meshes[m].name), p);
+      const std::string owner = fmt::format("/meshes/{}/primitives/{}", m, p);
       decodeDracoPrimitive(model, primitive, extension, ctx, owner);
     }
   }

@@ -1,9 +1,12 @@
-// The loader's entry points: read the asset, pre-check its JSON (schema types, glTF version,
-// extensions, image bufferViews) before tinygltf sees it, parse it through tinygltf with the
-// sandboxed file and image callbacks, and build the Scene; every failure leaves as lgh::Error.
+// The loader's entry points: read the asset, pre-check its container and JSON (nesting, schema
+// types, glTF version, the document's references and ranges, extensions) before tinygltf sees it,
+// parse it through tinygltf with the sandboxed file and image callbacks, and build the Scene; every
+// failure leaves as lgh::Error.
 //
 // The stages, one file each in this folder:
+//   glb_container       the GLB header and chunks, strictly
 //   schema_check        JSON member types, before tinygltf (which drops wrongly typed members)
+//   document_check      what the specification requires beyond types (as the Khronos validator)
 //   side_files          buffer and image URIs, through the asset sandbox (tinygltf's file access)
 //   image_decoding      texture images: size limit from the header, then our image I/O
 //   accessor_reader     bounds-checked accessor reads
@@ -30,9 +33,12 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "core/json_shape.hpp"
 #include "lgh/error.hpp"
 #include "scene/asset_path.hpp"
+#include "scene/gltf/document_check.hpp"
 #include "scene/gltf/geometry_decompression.hpp"
+#include "scene/gltf/glb_container.hpp"
 #include "scene/gltf/image_decoding.hpp"
 #include "scene/gltf/load_context.hpp"
 #include "scene/gltf/scene_builder.hpp"
@@ -60,61 +66,6 @@ const std::set<std::string, std::less<>> kSupportedExtensions = {
     "KHR_materials_volume",       "KHR_materials_variants",
     "KHR_draco_mesh_compression", "EXT_meshopt_compression",
     "EXT_texture_webp",           "MSFT_texture_dds"};
-
-constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
-constexpr std::uint32_t kGlbJsonChunk = 0x4E4F534A;
-
-std::uint32_t readLittleEndian32(const std::uint8_t* bytes) {
-  return static_cast<std::uint32_t>(bytes[0]) | (static_cast<std::uint32_t>(bytes[1]) << 8U) |
-         (static_cast<std::uint32_t>(bytes[2]) << 16U) |
-         (static_cast<std::uint32_t>(bytes[3]) << 24U);
-}
-
-bool isGlb(const std::vector<std::uint8_t>& bytes) {
-  return bytes.size() >= 4 && readLittleEndian32(bytes.data()) == kGlbMagic;
-}
-
-// The JSON chunk of a GLB; nullopt when the header is broken (tinygltf then says how).
-std::optional<std::string_view> glbJson(const std::vector<std::uint8_t>& bytes) {
-  if (bytes.size() < 20 || readLittleEndian32(bytes.data() + 16) != kGlbJsonChunk) {
-    return std::nullopt;
-  }
-  const std::uint32_t length = readLittleEndian32(bytes.data() + 12);
-  if (length > bytes.size() - 20) return std::nullopt;
-  return std::string_view(reinterpret_cast<const char*>(bytes.data() + 20), length);
-}
-
-std::size_t jsonSize(const json& value, const char* key, std::size_t fallback = 0) {
-  const auto it = value.find(key);
-  return it != value.end() && it->is_number_unsigned() ? it->get<std::size_t>() : fallback;
-}
-
-// tinygltf reads an image's bufferView bytes without checking that they lie inside the buffer;
-// check that here, on the JSON, before it gets the chance.
-void checkImageBufferViews(const json& document, const LoadContext& ctx) {
-  const json empty = json::array();
-  const json& images = document.contains("images") ? document["images"] : empty;
-  const json& views = document.contains("bufferViews") ? document["bufferViews"] : empty;
-  const json& buffers = document.contains("buffers") ? document["buffers"] : empty;
-  for (std::size_t i = 0; i < images.size(); ++i) {
-    const std::size_t view = jsonSize(images[i], "bufferView", SIZE_MAX);
-    if (view == SIZE_MAX) continue;
-    if (view >= views.size()) {
-      invalid(ctx, fmt::format("invalid glTF: /images/{}/bufferView names bufferView {}, which "
-                               "does not exist",
-                               i, view));
-    }
-    const std::size_t buffer = jsonSize(views[view], "buffer", SIZE_MAX);
-    const std::size_t offset = jsonSize(views[view], "byteOffset");
-    const std::size_t length = jsonSize(views[view], "byteLength");
-    const std::size_t bufferLength =
-        buffer < buffers.size() ? jsonSize(buffers[buffer], "byteLength") : 0;
-    if (offset > bufferLength || length > bufferLength - offset) {
-      invalid(ctx, fmt::format("invalid glTF: bufferView {} of image {} lies outside its buffer",
-                               view, i));
-    }
-  }
-}
 
 // Required extensions we lack fail the load; optional ones are ignored with a warning.
 void checkExtensions(const json& document, LoadContext& ctx) {
@@ -203,29 +154,18 @@ bool stubDracoIndexViews(json& document) {
   return stub.has_value();
 }
 
-// A GLB with its JSON chunk replaced by `text` (padded with spaces), other chunks unchanged.
-std::vector<std::uint8_t> replaceGlbJson(const std::vector<std::uint8_t>& bytes,
-                                         const std::string& text) {
-  const std::uint32_t oldLength = readLittleEndian32(bytes.data() + 12);
-  std::string padded = text;
-  while (padded.size() % 4 != 0) padded.push_back(' ');
-  std::vector<std::uint8_t> out(bytes.begin(), bytes.begin() + 12);
-  auto put32 = [&out](std::uint32_t value) {
-    for (int b = 0; b < 4; ++b) out.push_back(static_cast<std::uint8_t>(value >> (8 * b)));
-  };
-  put32(static_cast<std::uint32_t>(padded.size()));
-  put32(kGlbJsonChunk);
-  out.insert(out.end(), padded.begin(), padded.end());
-  out.insert(out.end(), bytes.begin() + 20 + oldLength, bytes.end());
-  const auto total = static_cast<std::uint32_t>(out.size());
-  for (int b = 0; b < 4; ++b) {
-    out[8 + static_cast<std::size_t>(b)] = static_cast<std::uint8_t>(total >> (8 * b));
-  }
-  return out;
-}
+// glTF's own structure nests 7 levels deep (/meshes/0/primitives/0/targets/0/POSITION); extras
+// and extensions may nest further, but not without bound. The value count bounds what the JSON
+// costs in memory, here and again inside tinygltf.
+constexpr JsonShapeLimits kGltfJsonLimits{64, 4'000'000};
 
 // The JSON checks; returns replacement JSON text when the document had to be patched for tinygltf.
-std::optional<std::string> precheckJson(std::string_view text, LoadContext& ctx, bool binary) {
+// `glbBinBytes`: for a GLB, the size of its BIN chunk (0: none).
+std::optional<std::string> precheckJson(std::string_view text,
+                                        std::optional<std::size_t> glbBinBytes, LoadContext& ctx) {
+  if (const auto excess = findJsonShapeExcess(text, kGltfJsonLimits)) {
+    tooLarge(ctx, "the glTF JSON " + excess->describe(kGltfJsonLimits));
+  }
   json document;
   try {
     document = json::parse(text.begin(), text.end());
@@ -235,11 +175,13 @@ std::optional<std::string> precheckJson(std::string_view text, LoadContext& ctx,
   checkSchema(document, ctx.displayName);
   const std::string version = document["asset"]["version"].get<std::string>();
   if (version.rfind("2.", 0) != 0) {
-    invalid(ctx, fmt::format("glTF version {} is not supported (2.x only)", version));
+    invalid(ctx,
+            fmt::format("/asset/version: glTF version {} is not supported (2.x only)", version));
   }
+  checkDocument(document, {ctx.displayName, glbBinBytes});
   checkExtensions(document, ctx);
-  checkImageBufferViews(document, ctx);
-  const bool meshopt = stubMeshoptFallbackBuffers(document, binary);
+  // The stubs come after the checks: what the validator sees is the asset as sent.
+  const bool meshopt = stubMeshoptFallbackBuffers(document, glbBinBytes.has_value());
   const bool draco = stubDracoIndexViews(document);
   if (meshopt || draco) return document.dump();
   return std::nullopt;
@@ -264,15 +206,22 @@ void addParserWarnings(LoadContext& ctx, const std::string& text) {
 }
 
 tinygltf::Model parseModel(const std::vector<std::uint8_t>& original, LoadContext& ctx) {
-  const bool binary = isGlb(original);
+  const bool binary = hasGlbMagic(original);
   std::vector<std::uint8_t> patched;
-  if (!binary) {
+  if (binary) {
+    const GlbChunks chunks = readGlbContainer(original, ctx);
+    const auto text = precheckJson(chunks.json, chunks.binBytes, ctx);
+    for (std::uint32_t type : chunks.unknownChunkTypes) {
+      ctx.warnOnce(fmt::format("GLB chunk of unknown type 0x{:08x} ignored", type));
+    }
+    if (text || !chunks.unknownChunkTypes.empty()) {
+      patched = rebuiltGlb(original, chunks, text ? std::string_view(*text) : chunks.json);
+    }
+  } else {
     const auto text = precheckJson(
-        std::string_view(reinterpret_cast<const char*>(original.data()), original.size()), ctx,
-        false);
+        std::string_view(reinterpret_cast<const char*>(original.data()), original.size()),
+        std::nullopt, ctx);
     if (text) patched.assign(text->begin(), text->end());
-  } else if (const auto json = glbJson(original)) {
-    if (const auto text = precheckJson(*json, ctx, true)) patched = replaceGlbJson(original, *text);
   }
   const std::vector<std::uint8_t>& bytes = patched.empty() ? original : patched;
   tinygltf::TinyGLTF parser;
@@ -386,6 +335,23 @@ Scene loadGltfFromMemory(const std::string& gltfName,
     }
     return gltf::loadModel(*it->second, ctx);
   });
+}
+
+Scene loadSceneSource(const SceneSource& source, const std::filesystem::path& assetRoot,
+                      const SceneLoadLimits& limits, const SceneLoadOptions& options) {
+  switch (source.kind) {
+    case SceneSource::Kind::InlineGlb:
+      return loadGlbBytes(source.glbBytes,
+                          source.displayName.empty() ? "inline.glb" : source.displayName, limits,
+                          options);
+    case SceneSource::Kind::UploadedGltf:
+      return loadGltfFromMemory(source.gltfFileName, source.uploadedFiles, limits, options);
+    case SceneSource::Kind::AssetPath:
+      return loadGltfFile(assetRoot, source.assetPath, limits, options);
+    case SceneSource::Kind::Builtin:
+      break;
+  }
+  throw Error(ErrorCode::Internal, "built-in scenes are made, not loaded");
 }
 
 }  // namespace lgh

@@ -16,15 +16,17 @@
 //    REQUIRED extensions (Invalid, naming them, unless options.ignoreUnsupportedExtensions), wrong
 //    accessor type/componentType for an attribute, accessor or bufferView out of bounds, index >=
 //    vertex count, non-finite POSITION, node cycles or hierarchies deeper than 64, limits exceeded
-//    after decompression too (TooLarge), an image used by a material that cannot be decoded
-//    (Invalid, naming it), a Draco or meshopt stream that does not decode (Invalid), an animation
-//    index or material variant the asset lacks (Invalid, naming the request field).
+//    after decompression too (TooLarge: SceneLoadLimits, JSON nesting deeper than 64 levels or more
+//    than 4 million values), an invalid GLB container (version, lengths, chunk types and
+//    alignment), what document_check.hpp lists (Invalid, naming the JSON pointer), an image used by
+//    a material that cannot be decoded (Invalid, naming it), a Draco or meshopt stream that does
+//    not decode (Invalid), an animation index or material variant the asset lacks (Invalid, naming
+//    the request field).
 //  - an asset whose scene draws nothing loads as an empty scene, with a warning.
 //  - repairs: a trailing partial triangle or line dropped; missing normals -> flat normals for
 //    triangles (glTF's rule), unlit lines and points; zero/NaN normals -> area-weighted smooth
-//    normals; missing or broken tangents -> generated (see tangents.hpp); non-finite UVs/colours
-//    -> 0/1; unsupported optional extensions ignored with a warning; an image no material uses
-//    that fails to load is dropped.
+//    normals; missing or broken tangents -> generated (see tangents.hpp); unsupported optional
+//    extensions ignored with a warning; an image no material uses that fails to load is dropped.
 //  - poses: skins and morph targets are applied at load time, at the bind pose (node transforms
 //    and weights as stored) or at options.animation; a skinned mesh comes out in world space.
 #pragma once
@@ -53,6 +55,10 @@ struct SceneLoadOptions {
 struct SceneLoadLimits {
   std::size_t maxTriangles = 20'000'000;  // drawn triangles (instances count)
   int maxTextureSize = 16384;             // largest width or height of a texture image
+  // All texture images of the asset together, decoded to RGBA8 (every image is decoded, used or
+  // not): a few KB of PNG or JPEG can claim a large image, and an asset can name the same data
+  // in any number of images.
+  std::size_t maxTextureBytes = 4ULL << 30;
   std::size_t maxFileBytes = 1ULL << 30;  // per file: the asset and each side file
 };
 
@@ -72,5 +78,10 @@ Scene loadGlbBytes(const std::vector<std::uint8_t>& bytes, const std::string& di
 Scene loadGltfFromMemory(const std::string& gltfName,
                          const std::map<std::string, std::vector<std::uint8_t>>& files,
                          const SceneLoadLimits& limits = {}, const SceneLoadOptions& options = {});
+
+// The scene of a request's SceneSource: a file under assetRoot, an inline or uploaded .glb, or an
+// uploaded .gltf with its side files. Not for the demo scene (lgh::Error(Internal)).
+Scene loadSceneSource(const SceneSource& source, const std::filesystem::path& assetRoot,
+                      const SceneLoadLimits& limits, const SceneLoadOptions& options = {});
 
 }  // namespace lgh

@@ -74,9 +74,17 @@ void checkTextureSize(const LoadContext& ctx, std::uint64_t width, std::uint64_t
     tooLarge(ctx,
              fmt::format("{} is {} x {} pixels, over the limit of {}", what, width, height, limit));
   }
+  // Both at most maxTextureSize (< 2^31): the product cannot overflow.
+  const std::uint64_t bytes = width * height * 4;
+  if (bytes >
+      ctx.limits.maxTextureBytes - std::min(ctx.decodedTextureBytes, ctx.limits.maxTextureBytes)) {
+    tooLarge(ctx, fmt::format("{} ({} x {} pixels) takes the asset's textures past the limit of "
+                              "{} bytes decoded",
+                              what, width, height, ctx.limits.maxTextureBytes));
+  }
 }
 
-Image8 decodeTexture(const LoadContext& ctx, const std::uint8_t* bytes, std::size_t size,
+Image8 decodeTexture(LoadContext& ctx, const std::uint8_t* bytes, std::size_t size,
                      const std::string& what) {
   if (bytes == nullptr || size == 0) invalid(ctx, fmt::format("{} has no data", what));
   if (const auto header = sniffImageSize(bytes, size)) {
@@ -97,13 +105,14 @@ Image8 decodeTexture(const LoadContext& ctx, const std::uint8_t* bytes, std::siz
       image.pixels.size() != expected) {
     invalid(ctx, fmt::format("{} decoded to an unusable image", what));
   }
+  ctx.decodedTextureBytes += expected;
   return image;
 }
 
 }  // namespace
 
 std::string imageLabel(const tinygltf::Image& image, int index) {
-  std::string text = label("image", index, image.name);
+  std::string text = label("images", index, image.name);
   if (!image.uri.empty()) text += fmt::format(" '{}'", image.uri);
   return text;
 }

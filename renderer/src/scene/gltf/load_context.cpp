@@ -12,9 +12,9 @@ void tooLarge(const LoadContext& ctx, const std::string& message) {
   throw Error(ErrorCode::TooLarge, message, ctx.displayName);
 }
 
-std::string label(const char* kind, int index, const std::string& name) {
-  return name.empty() ? fmt::format("{} {}", kind, index)
-                      : fmt::format("{} {} ('{}')", kind, index, name);
+std::string label(const char* array, int index, const std::string& name) {
+  return name.empty() ? fmt::format("/{}/{}", array, index)
+                      : fmt::format("/{}/{} ('{}')", array, index, name);
 }
 
 }  // namespace lgh::gltf

@@ -37,6 +37,7 @@ struct LoadContext {
   std::map<int, Image8> images;                     // decoded, by glTF image index
   std::map<int, BlockCompressedImage> blockImages;  // DDS blocks as loaded, by glTF image index
   std::map<int, Error> imageErrors;                 // decode failures, by glTF image index
+  std::size_t decodedTextureBytes = 0;              // of all images decoded so far
   std::vector<std::string> warnings;
 
   void warnOnce(const std::string& warning) {
@@ -52,7 +53,8 @@ struct LoadContext {
 // Throws lgh::Error(TooLarge, message), naming the asset.
 [[noreturn]] void tooLarge(const LoadContext& ctx, const std::string& message);
 
-// "mesh 3 ('Teapot')", or "mesh 3" when unnamed: how messages name glTF objects.
-std::string label(const char* kind, int index, const std::string& name);
+// "/meshes/3 ('Teapot')", or "/meshes/3" when unnamed: how messages name glTF objects, by the
+// JSON pointer of the object (`array` is the document's array: "meshes", "nodes", ...).
+std::string label(const char* array, int index, const std::string& name);
 
 }  // namespace lgh::gltf

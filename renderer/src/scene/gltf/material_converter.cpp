@@ -46,7 +46,7 @@ MaterialConverter::MaterialConverter(const tinygltf::Model& model, LoadContext& 
 
 Material MaterialConverter::convert(int index) {
   const tinygltf::Material& source = model_.materials[static_cast<std::size_t>(index)];
-  const std::string owner = label("material", index, source.name);
+  const std::string owner = fmt::format("/materials/{}", index);
   Material material;
   material.name = source.name;
   const auto& pbr = source.pbrMetallicRoughness;
@@ -62,18 +62,20 @@ Material MaterialConverter::convert(int index) {
   material.alphaMode = alphaMode(source.alphaMode, owner);
   material.alphaCutoff = std::max(finiteOr(source.alphaCutoff, 0.5F), 0.0F);
   material.doubleSided = source.doubleSided;
-  material.baseColorTexture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
-                                      pbr.baseColorTexture.extensions, owner + " baseColorTexture");
+  material.baseColorTexture =
+      texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+              pbr.baseColorTexture.extensions, owner + "/pbrMetallicRoughness/baseColorTexture");
   material.metallicRoughnessTexture =
       texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
-              pbr.metallicRoughnessTexture.extensions, owner + " metallicRoughnessTexture");
+              pbr.metallicRoughnessTexture.extensions,
+              owner + "/pbrMetallicRoughness/metallicRoughnessTexture");
   material.normalTexture = texture(source.normalTexture.index, source.normalTexture.texCoord,
-                                   source.normalTexture.extensions, owner + " normalTexture");
+                                   source.normalTexture.extensions, owner + "/normalTexture");
   material.occlusionTexture =
       texture(source.occlusionTexture.index, source.occlusionTexture.texCoord,
-              source.occlusionTexture.extensions, owner + " occlusionTexture");
+              source.occlusionTexture.extensions, owner + "/occlusionTexture");
   material.emissiveTexture = texture(source.emissiveTexture.index, source.emissiveTexture.texCoord,
-                                     source.emissiveTexture.extensions, owner + " emissiveTexture");
+                                     source.emissiveTexture.extensions, owner + "/emissiveTexture");
   readExtensions(source, owner, material);
   applyExtras(source, index, owner, material);
   return material;
@@ -158,19 +160,20 @@ TextureRef MaterialConverter::texture(int textureIndex, int texCoord,
                                       const std::string& owner) {
   if (textureIndex < 0) return {};
   if (static_cast<std::size_t>(textureIndex) >= model_.textures.size()) {
-    invalid(ctx_, fmt::format("{}: texture {} does not exist", owner, textureIndex));
+    invalid(ctx_,
+            fmt::format("{}/index names texture {}, which does not exist", owner, textureIndex));
   }
   const tinygltf::Texture& source = model_.textures[static_cast<std::size_t>(textureIndex)];
   const int image = textureImage(source);
   if (image < 0) {
     ctx_.warnings.push_back(
-        fmt::format("{}: texture {} has no image in a supported format; "
+        fmt::format("{}: /textures/{} has no image in a supported format; "
                     "ignored",
                     owner, textureIndex));
     return {};
   }
   if (static_cast<std::size_t>(image) >= model_.images.size()) {
-    invalid(ctx_, fmt::format("{}: texture {} names image {}, which does not exist", owner,
+    invalid(ctx_, fmt::format("{}: /textures/{} names image {}, which does not exist", owner,
                               textureIndex, image));
   }
   TextureRef ref;
@@ -202,7 +205,7 @@ Sampler MaterialConverter::sampler(int index, const std::string& owner) const {
                          (source.minFilter == -1 || knownFilter(source.minFilter, true));
   if (!filtersOk || !knownWrap(source.wrapS) || !knownWrap(source.wrapT)) {
     ctx_.warnOnce(
-        fmt::format("sampler {} has invalid filter or wrap values; defaults used", index));
+        fmt::format("/samplers/{} has invalid filter or wrap values; defaults used", index));
   }
   return result;
 }

@@ -37,17 +37,20 @@ float unit(float value) { return std::clamp(value, 0.0F, 1.0F); }
 
 void MaterialConverter::readExtensions(const tinygltf::Material& source, const std::string& owner,
                                        Material& material) {
-  auto textureOf = [&](const tinygltf::Value& object, const char* key) {
-    return object.Has(key) ? textureFromValue(object.Get(key), owner + " " + key) : TextureRef{};
+  // Named by JSON pointer, as the core material's textures are.
+  auto textureOf = [&](const tinygltf::Value& object, const char* name, const char* key) {
+    return object.Has(key)
+               ? textureFromValue(object.Get(key), owner + "/extensions/" + name + "/" + key)
+               : TextureRef{};
   };
   if (extension(source, "KHR_materials_unlit") != nullptr) material.model = MaterialModel::Unlit;
   if (const tinygltf::Value* cc = extension(source, "KHR_materials_clearcoat")) {
     Clearcoat& coat = material.clearcoat;
     coat.factor = unit(number(*cc, "clearcoatFactor", 0.0F));
     coat.roughness = unit(number(*cc, "clearcoatRoughnessFactor", 0.0F));
-    coat.texture = textureOf(*cc, "clearcoatTexture");
-    coat.roughnessTexture = textureOf(*cc, "clearcoatRoughnessTexture");
-    coat.normalTexture = textureOf(*cc, "clearcoatNormalTexture");
+    coat.texture = textureOf(*cc, "KHR_materials_clearcoat", "clearcoatTexture");
+    coat.roughnessTexture = textureOf(*cc, "KHR_materials_clearcoat", "clearcoatRoughnessTexture");
+    coat.normalTexture = textureOf(*cc, "KHR_materials_clearcoat", "clearcoatNormalTexture");
     if (cc->Has("clearcoatNormalTexture")) {
       coat.normalScale = number(cc->Get("clearcoatNormalTexture"), "scale", 1.0F);
     }
@@ -56,15 +59,17 @@ void MaterialConverter::readExtensions(const tinygltf::Material& source, const s
     material.sheen.colorFactor =
         glm::clamp(color(*sheen, "sheenColorFactor", glm::vec3(0.0F)), 0.0F, 1.0F);
     material.sheen.roughnessFactor = unit(number(*sheen, "sheenRoughnessFactor", 0.0F));
-    material.sheen.colorTexture = textureOf(*sheen, "sheenColorTexture");
-    material.sheen.roughnessTexture = textureOf(*sheen, "sheenRoughnessTexture");
+    material.sheen.colorTexture = textureOf(*sheen, "KHR_materials_sheen", "sheenColorTexture");
+    material.sheen.roughnessTexture =
+        textureOf(*sheen, "KHR_materials_sheen", "sheenRoughnessTexture");
   }
   if (const tinygltf::Value* specular = extension(source, "KHR_materials_specular")) {
     material.specular.factor = unit(number(*specular, "specularFactor", 1.0F));
     material.specular.colorFactor =
         glm::max(color(*specular, "specularColorFactor", glm::vec3(1.0F)), 0.0F);
-    material.specular.texture = textureOf(*specular, "specularTexture");
-    material.specular.colorTexture = textureOf(*specular, "specularColorTexture");
+    material.specular.texture = textureOf(*specular, "KHR_materials_specular", "specularTexture");
+    material.specular.colorTexture =
+        textureOf(*specular, "KHR_materials_specular", "specularColorTexture");
   }
   if (const tinygltf::Value* ior = extension(source, "KHR_materials_ior")) {
     // ior 0 is the extension's way of saying "infinitely reflective" (F0 = 1); otherwise >= 1.
@@ -73,7 +78,8 @@ void MaterialConverter::readExtensions(const tinygltf::Material& source, const s
   }
   if (const tinygltf::Value* transmission = extension(source, "KHR_materials_transmission")) {
     material.transmission.factor = unit(number(*transmission, "transmissionFactor", 0.0F));
-    material.transmission.texture = textureOf(*transmission, "transmissionTexture");
+    material.transmission.texture =
+        textureOf(*transmission, "KHR_materials_transmission", "transmissionTexture");
   }
   if (const tinygltf::Value* volume = extension(source, "KHR_materials_volume")) {
     Transmission& t = material.transmission;

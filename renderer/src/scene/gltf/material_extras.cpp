@@ -1,7 +1,8 @@
 // A glTF material's extras.lgh (MaterialConverter::applyExtras): the same material parameters as
 // a request's `materials[].parameters` (proto/material-parameters.schema.json), checked by the
 // same schema and applied by the same code, with textures naming the asset's glTF textures.
-// Errors name the material and the field: "material 2 ('red'): extras/lgh/shininess must be ...".
+// Errors start with the JSON pointer of the field and name the material:
+// "/materials/2/extras/lgh/shininess must be at least 0, got -1 (material 'red')".
 #include <string>
 
 #include <fmt/format.h>
@@ -72,8 +73,11 @@ void MaterialConverter::applyExtras(const tinygltf::Material& source, int index,
   } catch (const Error& error) {
     // Images that fail keep their own error (and status).
     if (error.code() != ErrorCode::Invalid && error.code() != ErrorCode::BadRequest) throw;
-    // The field is a pointer inside extras.lgh; name the asset's own place for it.
-    invalid(ctx_, fmt::format("{}: {}{} {}", owner, where, error.field(), error.message()));
+    // The field is a pointer inside extras.lgh; the message starts with the asset's own pointer
+    // for it, as the loader's other errors do, and names the material.
+    const std::string name =
+        source.name.empty() ? "" : fmt::format(" (material '{}')", source.name);
+    invalid(ctx_, fmt::format("{}{} {}{}", where, error.field(), error.message(), name));
   }
 }
 

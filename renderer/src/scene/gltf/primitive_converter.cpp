@@ -1,5 +1,6 @@
 #include "scene/gltf/primitive_converter.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -104,23 +105,19 @@ const char* elementName(Topology topology) {
   return "elements";
 }
 
-template <typename Vec>
-Vec sanitized(Vec value, float replacement, std::size_t& replaced) {
-  for (int c = 0; c < Vec::length(); ++c) {
-    if (!std::isfinite(value[c])) {
-      value[c] = replacement;
-      ++replaced;
-    }
-  }
-  return value;
-}
-
-glm::vec4 readColor(const std::vector<float>& colors, std::size_t i, int components,
-                    std::size_t& replaced) {
+glm::vec4 readColor(const std::vector<float>& colors, std::size_t i, int components) {
   const std::size_t base = i * static_cast<std::size_t>(components);
   glm::vec4 color(colors[base], colors[base + 1], colors[base + 2], 1.0F);
   if (components == 4) color.w = colors[base + 3];
-  return sanitized(color, 1.0F, replaced);
+  return color;
+}
+
+// Normals whose length is off 1 by more than the Khronos validator's tolerance.
+std::size_t countNonUnitNormals(const Primitive& primitive) {
+  return static_cast<std::size_t>(
+      std::count_if(primitive.vertices.begin(), primitive.vertices.end(), [](const Vertex& v) {
+        return isUsableDirection(v.normal) && std::abs(glm::length(v.normal) - 1.0F) > 5e-5F;
+      }));
 }
 
 // Normalises the asset's tangents in place; false when any is unusable (then all are rebuilt).
@@ -146,11 +143,10 @@ std::optional<Primitive> PrimitiveConverter::convert(int meshIndex, int primitiv
                                                      int variant) const {
   const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(meshIndex)];
   const tinygltf::Primitive& source = mesh.primitives[static_cast<std::size_t>(primitiveIndex)];
-  const std::string owner =
-      fmt::format("{} primitive {}", label("mesh", meshIndex, mesh.name), primitiveIndex);
+  const std::string owner = fmt::format("/meshes/{}/primitives/{}", meshIndex, primitiveIndex);
   if (!isKnownMode(source.mode)) {
     ctx_.warnings.push_back(
-        fmt::format("{}: mode {} is not a glTF primitive mode; skipped", owner, source.mode));
+        fmt::format("{}/mode: {} is not a glTF primitive mode; skipped", owner, source.mode));
     return std::nullopt;
   }
   Primitive primitive;
@@ -176,12 +172,27 @@ std::optional<Primitive> PrimitiveConverter::convert(int meshIndex, int primitiv
   }
   finishNormals(primitive, hasNormals, owner);
   finishTangents(primitive, hasTangents, tangentUvSet(primitive.material), owner);
+  if (!hasTangents && hasClearcoatNormalTexture(primitive.material)) {
+    // The Khronos validator's MESH_PRIMITIVE_NO_TANGENT_SPACE, an error; the specification lets a
+    // client compute MikkTSpace tangents instead, which finishTangents did.
+    ctx_.warnOnce(
+        "a primitive without TANGENT uses a material with a clearcoatNormalTexture; MikkTSpace "
+        "tangents generated");
+  }
   return primitive;
+}
+
+bool PrimitiveConverter::hasClearcoatNormalTexture(int material) const {
+  if (material < 0) return false;
+  const tinygltf::Material& source = model_.materials[static_cast<std::size_t>(material)];
+  const auto it = source.extensions.find("KHR_materials_clearcoat");
+  return it != source.extensions.end() && it->second.Has("clearcoatNormalTexture");
 }
 
 int PrimitiveConverter::checkedMaterial(int material, const std::string& owner) const {
   if (material >= 0 && static_cast<std::size_t>(material) >= model_.materials.size()) {
-    invalid(ctx_, fmt::format("{}: material {} does not exist", owner, material));
+    invalid(ctx_,
+            fmt::format("{}/material names material {}, which does not exist", owner, material));
   }
   return material;
 }
@@ -218,11 +229,12 @@ std::vector<float> PrimitiveConverter::readAttribute(const tinygltf::Primitive& 
                                                      int* components) const {
   const int accessor = attributeAccessor(source, name);
   if (accessor < 0) return {};
-  const std::string what = fmt::format("{} attribute {}", owner, name);
+  const std::string what = fmt::format("{}/attributes/{}", owner, name);
   std::vector<float> values = reader_.readFloats(accessor, semantic, what, components);
   if (values.size() != vertexCount * static_cast<std::size_t>(*components)) {
-    invalid(ctx_, fmt::format("{}: accessor {} has {} elements but POSITION has {}", what, accessor,
-                              values.size() / static_cast<std::size_t>(*components), vertexCount));
+    invalid(ctx_,
+            fmt::format("{}: /accessors/{} has {} elements but POSITION has {}", what, accessor,
+                        values.size() / static_cast<std::size_t>(*components), vertexCount));
   }
   return values;
 }
@@ -230,16 +242,16 @@ std::vector<float> PrimitiveConverter::readAttribute(const tinygltf::Primitive& 
 void PrimitiveConverter::readPositions(const tinygltf::Primitive& source, const std::string& owner,
                                        Primitive& primitive) const {
   const int accessor = attributeAccessor(source, "POSITION");
-  if (accessor < 0) invalid(ctx_, fmt::format("{} has no POSITION attribute", owner));
+  if (accessor < 0) invalid(ctx_, fmt::format("{}/attributes has no POSITION", owner));
   int components = 0;
-  const std::string what = fmt::format("{} attribute POSITION", owner);
+  const std::string what = fmt::format("{}/attributes/POSITION", owner);
   const std::vector<float> values =
       reader_.readFloats(accessor, Semantic::Position, what, &components);
   primitive.vertices.resize(values.size() / 3);
   for (std::size_t i = 0; i < primitive.vertices.size(); ++i) {
     const glm::vec3 position(values[i * 3], values[i * 3 + 1], values[i * 3 + 2]);
     if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z)) {
-      invalid(ctx_, fmt::format("{}: accessor {} holds a non-finite position (NaN or Inf) at "
+      invalid(ctx_, fmt::format("{}: /accessors/{} holds a non-finite position (NaN or Inf) at "
                                 "vertex {}",
                                 what, accessor, i));
     }
@@ -250,7 +262,7 @@ void PrimitiveConverter::readPositions(const tinygltf::Primitive& source, const 
 void PrimitiveConverter::readIndices(const tinygltf::Primitive& source, const std::string& owner,
                                      std::size_t trianglesSoFar, Primitive& primitive) const {
   const std::size_t vertexCount = primitive.vertices.size();
-  const std::string what = fmt::format("{} indices", owner);
+  const std::string what = fmt::format("{}/indices", owner);
   const std::size_t indexCount =
       source.indices >= 0 ? reader_.elementCount(source.indices, what) : vertexCount;
   // Lines and points count against the triangle limit element for element: each is one draw
@@ -281,7 +293,7 @@ void PrimitiveConverter::checkIndexRange(const std::vector<std::uint32_t>& indic
                                          int accessor) const {
   for (std::size_t i = 0; i < indices.size(); ++i) {
     if (indices[i] >= vertexCount) {
-      invalid(ctx_, fmt::format("{}: accessor {} has index {} at position {}, out of range for "
+      invalid(ctx_, fmt::format("{}: /accessors/{} has index {} at position {}, out of range for "
                                 "{} vertices",
                                 what, accessor, indices[i], i, vertexCount));
     }
@@ -311,22 +323,16 @@ void PrimitiveConverter::readAttributes(const tinygltf::Primitive& source, const
   int colorComponents = 4;
   const auto colors =
       readAttribute(source, "COLOR_0", Semantic::Color, owner, count, &colorComponents);
-  std::size_t nonFinite = 0;
+  // The reader has refused non-finite values already.
   for (std::size_t i = 0; i < count; ++i) {
     Vertex& v = primitive.vertices[i];
     if (!normals.empty()) v.normal = {normals[i * 3], normals[i * 3 + 1], normals[i * 3 + 2]};
     if (!tangents.empty()) {
       v.tangent = {tangents[i * 4], tangents[i * 4 + 1], tangents[i * 4 + 2], tangents[i * 4 + 3]};
     }
-    if (!uv0.empty()) v.uv0 = sanitized(glm::vec2(uv0[i * 2], uv0[i * 2 + 1]), 0.0F, nonFinite);
-    if (!uv1.empty()) v.uv1 = sanitized(glm::vec2(uv1[i * 2], uv1[i * 2 + 1]), 0.0F, nonFinite);
-    if (!colors.empty()) v.color = readColor(colors, i, colorComponents, nonFinite);
-  }
-  if (nonFinite > 0) {
-    ctx_.warnings.push_back(
-        fmt::format("{}: {} non-finite texture coordinate or colour values "
-                    "replaced",
-                    owner, nonFinite));
+    if (!uv0.empty()) v.uv0 = glm::vec2(uv0[i * 2], uv0[i * 2 + 1]);
+    if (!uv1.empty()) v.uv1 = glm::vec2(uv1[i * 2], uv1[i * 2 + 1]);
+    if (!colors.empty()) v.color = readColor(colors, i, colorComponents);
   }
   hasNormals = !normals.empty();
   hasTangents = !tangents.empty();
@@ -337,6 +343,12 @@ void PrimitiveConverter::finishNormals(Primitive& primitive, bool hasNormals,
   if (!hasNormals) {
     generateFlatNormals(primitive);  // glTF: "client implementations MUST calculate flat normals"
     return;
+  }
+  if (const std::size_t nonUnit = countNonUnitNormals(primitive); nonUnit > 0) {
+    ctx_.warnings.push_back(
+        fmt::format("{}/attributes/NORMAL: {} normals not of unit length; "
+                    "normalized",
+                    owner, nonUnit));
   }
   if (const std::size_t repaired = repairNormals(primitive); repaired > 0) {
     ctx_.warnings.push_back(

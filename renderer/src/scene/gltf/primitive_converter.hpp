@@ -83,6 +83,7 @@ class PrimitiveConverter {
   // height map) uses; -1 without one.
   int tangentUvSet(int material) const;
   static int extrasTangentUvSet(const tinygltf::Material& source);
+  bool hasClearcoatNormalTexture(int material) const;
 
   void finishTangents(Primitive& primitive, bool hasTangents, int uvSet,
                       const std::string& owner) const;

@@ -105,7 +105,7 @@ class SceneBuilder {
                               ctx_.options.animation->time);
     }
     variant_ = chosenVariant();
-    for (int node : rootNodes()) visit(node, glm::mat4(1.0F), 0, "the scene");
+    for (const auto& [node, referrer] : rootNodes()) visit(node, glm::mat4(1.0F), 0, referrer);
     // A valid asset may draw nothing (a scene without nodes): an empty image, not an error, so
     // that a batch of thumbnails does not fail on it.
     const bool empty = scene_.triangleCount() == 0 && scene_.lineAndPointPrimitiveCount() == 0;
@@ -127,9 +127,10 @@ class SceneBuilder {
     return std::find(used.begin(), used.end(), name) != used.end();
   }
 
-  // The default scene's roots (scene 0 when none is named); with no scenes at all, every node
-  // that is nobody's child.
-  std::vector<int> rootNodes() const {
+  // The default scene's roots (scene 0 when none is named), with the JSON pointer that names
+  // each; with no scenes at all, every node that is nobody's child.
+  std::vector<std::pair<int, std::string>> rootNodes() const {
+    std::vector<std::pair<int, std::string>> roots;
     if (!model_.scenes.empty()) {
       const int chosen = model_.defaultScene >= 0 && static_cast<std::size_t>(model_.defaultScene) <
                                                          model_.scenes.size()
@@ -139,7 +140,11 @@ class SceneBuilder {
         ctx_.warnings.push_back(
             fmt::format("default scene {} does not exist; scene 0 used", model_.defaultScene));
       }
-      return model_.scenes[static_cast<std::size_t>(chosen)].nodes;
+      const std::vector<int>& nodes = model_.scenes[static_cast<std::size_t>(chosen)].nodes;
+      for (std::size_t k = 0; k < nodes.size(); ++k) {
+        roots.emplace_back(nodes[k], fmt::format("/scenes/{}/nodes/{}", chosen, k));
+      }
+      return roots;
     }
     std::vector<bool> isChild(model_.nodes.size(), false);
     for (const tinygltf::Node& node : model_.nodes) {
@@ -149,21 +154,21 @@ class SceneBuilder {
         }
       }
     }
-    std::vector<int> roots;
     for (std::size_t i = 0; i < isChild.size(); ++i) {
-      if (!isChild[i]) roots.push_back(static_cast<int>(i));
+      if (!isChild[i]) roots.emplace_back(static_cast<int>(i), fmt::format("/nodes/{}", i));
     }
     return roots;
   }
 
   void visit(int index, const glm::mat4& parent, int depth, const std::string& referrer) {
     if (index < 0 || static_cast<std::size_t>(index) >= model_.nodes.size()) {
-      invalid(ctx_, fmt::format("{} refers to node {}, which does not exist", referrer, index));
+      invalid(ctx_, fmt::format("{} names node {}, which does not exist", referrer, index));
     }
     const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(index)];
-    const std::string where = label("node", index, node.name);
+    const std::string where = label("nodes", index, node.name);
     if (onPath_[static_cast<std::size_t>(index)]) {
-      invalid(ctx_, fmt::format("the node hierarchy has a cycle: {} is its own ancestor", where));
+      invalid(ctx_, fmt::format("the node hierarchy has a cycle: {} is its own ancestor (at {})",
+                                where, referrer));
     }
     if (depth >= kMaxNodeDepth) {
       invalid(ctx_, fmt::format("the node hierarchy is deeper than {} levels (at {})",
@@ -179,7 +184,9 @@ class SceneBuilder {
     if (node.camera >= 0) addCamera(node.camera, world, where);
     addLight(node, world, where);
     onPath_[static_cast<std::size_t>(index)] = true;
-    for (int child : node.children) visit(child, world, depth + 1, where);
+    for (std::size_t k = 0; k < node.children.size(); ++k) {
+      visit(node.children[k], world, depth + 1, fmt::format("/nodes/{}/children/{}", index, k));
+    }
     onPath_[static_cast<std::size_t>(index)] = false;
   }
 
@@ -265,12 +272,12 @@ class SceneBuilder {
       invalid(ctx_, fmt::format("{} refers to skin {}, which does not exist", where, skinIndex));
     }
     const tinygltf::Skin& skin = model_.skins[static_cast<std::size_t>(skinIndex)];
-    const std::string owner = label("skin", skinIndex, skin.name);
+    const std::string owner = label("skins", skinIndex, skin.name);
     std::vector<float> inverseBind;
     if (skin.inverseBindMatrices >= 0) {
       int components = 0;
       inverseBind = reader_.readFloats(skin.inverseBindMatrices, Semantic::Matrix,
-                                       owner + " inverseBindMatrices", &components);
+                                       owner + "/inverseBindMatrices", &components);
       if (inverseBind.size() < skin.joints.size() * 16) {
         invalid(ctx_, fmt::format("{}: {} inverse bind matrices for {} joints", owner,
                                   inverseBind.size() / 16, skin.joints.size()));
@@ -393,7 +400,7 @@ class SceneBuilder {
       }
     }
     ctx_.warnings.push_back(fmt::format("{} of {} has an invalid type or projection; skipped",
-                                        label("camera", index, source.name), where));
+                                        label("cameras", index, source.name), where));
   }
 
   void addLight(const tinygltf::Node& node, const glm::mat4& world, const std::string& where) {
@@ -411,7 +418,7 @@ class SceneBuilder {
     if (!type || (*type != LightType::Point && !isUsableDirection(direction))) {
       ctx_.warnings.push_back(
           fmt::format("{} of {} has an unknown type or a degenerate direction; skipped",
-                      label("light", index, source.name), where));
+                      label("extensions/KHR_lights_punctual/lights", index, source.name), where));
       return;
     }
     LightDesc light;

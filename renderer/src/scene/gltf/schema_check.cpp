@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "lgh/error.hpp"
@@ -23,6 +26,17 @@ enum class Kind { Object, Array, String, Number, Bool, Index, Size, Count, Index
 
 struct Shape;
 
+// Values the glTF schema allows beyond the type (the validator's VALUE_NOT_IN_RANGE): a list of
+// numbers or strings, or a numeric range. Applies to the member, or to each item of an array.
+struct Constraint {
+  std::vector<std::int64_t> numbers = {};
+  std::vector<const char*> strings = {};
+  double minimum = -std::numeric_limits<double>::infinity();
+  double maximum = std::numeric_limits<double>::infinity();
+  bool exclusiveMinimum = false;
+  std::int64_t multipleOf = 0;
+};
+
 struct Member {
   const char* name;
   Kind kind;
@@ -30,6 +44,7 @@ struct Member {
   const Shape* shape = nullptr;  // Object: its shape; Array: the shape of each (object) item
   Kind items = Kind::Any;        // Array: the kind of each item (when no shape)
   int length = 0;                // Array: exact length; 0: any; -1: at least one item
+  const Constraint* constraint = nullptr;
 };
 
 struct Extension {
@@ -53,6 +68,30 @@ Member objects(const char* name, const Shape& shape, bool isRequired = false, in
 Member array(const char* name, Kind items, int length = 0, bool isRequired = false) {
   return {name, Kind::Array, isRequired, nullptr, items, length};
 }
+Member constrained(Member member, const Constraint& constraint) {
+  member.constraint = &constraint;
+  return member;
+}
+
+// The constraints of the glTF 2.0 schema that lghd checks.
+const Constraint kComponentTypes{{5120, 5121, 5122, 5123, 5125, 5126}};
+const Constraint kIndexComponentTypes{{5121, 5123, 5125}};
+const Constraint kAccessorTypes{{}, {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"}};
+const Constraint kPrimitiveModes{{0, 1, 2, 3, 4, 5, 6}};
+const Constraint kByteStride{{}, {}, 4, 252, false, 4};
+const Constraint kBufferViewTargets{{34962, 34963}};
+const Constraint kMagFilters{{9728, 9729}};
+const Constraint kMinFilters{{9728, 9729, 9984, 9985, 9986, 9987}};
+const Constraint kWraps{{33071, 33648, 10497}};
+const Constraint kAlphaModes{{}, {"OPAQUE", "MASK", "BLEND"}};
+const Constraint kUnitInterval{{}, {}, 0.0, 1.0};
+const Constraint kNonNegative{{}, {}, 0.0};
+const Constraint kPositive{{}, {}, 0.0, std::numeric_limits<double>::infinity(), true};
+const Constraint kRotationComponent{{}, {}, -1.0, 1.0};
+const Constraint kCameraTypes{{}, {"perspective", "orthographic"}};
+const Constraint kLightTypes{{}, {"directional", "point", "spot"}};
+const Constraint kInnerConeAngle{{}, {}, 0.0, 1.5707963267948966};
+const Constraint kOuterConeAngle{{}, {}, 0.0, 1.5707963267948966, true};
 
 const Shape& textureInfo() {
   static const Shape shape{{required("index", Kind::Index), optional("texCoord", Kind::Index)}};
@@ -65,18 +104,19 @@ const Shape& normalTextureInfo() {
 }
 const Shape& occlusionTextureInfo() {
   static const Shape shape{{required("index", Kind::Index), optional("texCoord", Kind::Index),
-                            optional("strength", Kind::Number)}};
+                            constrained(optional("strength", Kind::Number), kUnitInterval)}};
   return shape;
 }
 const Shape& pbrMetallicRoughness() {
-  static const Shape shape{
-      {array("baseColorFactor", Kind::Number, 4), object("baseColorTexture", textureInfo()),
-       optional("metallicFactor", Kind::Number), optional("roughnessFactor", Kind::Number),
-       object("metallicRoughnessTexture", textureInfo())}};
+  static const Shape shape{{constrained(array("baseColorFactor", Kind::Number, 4), kUnitInterval),
+                            object("baseColorTexture", textureInfo()),
+                            constrained(optional("metallicFactor", Kind::Number), kUnitInterval),
+                            constrained(optional("roughnessFactor", Kind::Number), kUnitInterval),
+                            object("metallicRoughnessTexture", textureInfo())}};
   return shape;
 }
 const Shape& emissiveStrength() {
-  static const Shape shape{{optional("emissiveStrength", Kind::Number)}};
+  static const Shape shape{{constrained(optional("emissiveStrength", Kind::Number), kNonNegative)}};
   return shape;
 }
 const Shape& material() {
@@ -84,15 +124,18 @@ const Shape& material() {
       {object("pbrMetallicRoughness", pbrMetallicRoughness()),
        object("normalTexture", normalTextureInfo()),
        object("occlusionTexture", occlusionTextureInfo()), object("emissiveTexture", textureInfo()),
-       array("emissiveFactor", Kind::Number, 3), optional("alphaMode", Kind::String),
-       optional("alphaCutoff", Kind::Number), optional("doubleSided", Kind::Bool)},
+       constrained(array("emissiveFactor", Kind::Number, 3), kUnitInterval),
+       constrained(optional("alphaMode", Kind::String), kAlphaModes),
+       constrained(optional("alphaCutoff", Kind::Number), kNonNegative),
+       optional("doubleSided", Kind::Bool)},
       {{"KHR_materials_emissive_strength", &emissiveStrength()}}};
   return shape;
 }
 const Shape& primitive() {
   static const Shape shape{{required("attributes", Kind::IndexMap),
                             optional("indices", Kind::Index), optional("material", Kind::Index),
-                            optional("mode", Kind::Index), array("targets", Kind::IndexMap)}};
+                            constrained(optional("mode", Kind::Index), kPrimitiveModes),
+                            array("targets", Kind::IndexMap)}};
   return shape;
 }
 const Shape& mesh() {
@@ -107,7 +150,8 @@ const Shape& nodeLight() {
 const Shape& node() {
   static const Shape shape{{optional("camera", Kind::Index), optional("skin", Kind::Index),
                             optional("mesh", Kind::Index), array("children", Kind::Index),
-                            array("matrix", Kind::Number, 16), array("rotation", Kind::Number, 4),
+                            array("matrix", Kind::Number, 16),
+                            constrained(array("rotation", Kind::Number, 4), kRotationComponent),
                             array("scale", Kind::Number, 3), array("translation", Kind::Number, 3),
                             array("weights", Kind::Number)},
                            {{"KHR_lights_punctual", &nodeLight()}}};
@@ -117,14 +161,17 @@ const Shape& scene() {
   static const Shape shape{{array("nodes", Kind::Index)}};
   return shape;
 }
+// Sparse byteOffsets are Index, not Size: tinygltf keeps them as int, and a larger value would
+// wrap around unnoticed.
 const Shape& sparseIndices() {
-  static const Shape shape{{required("bufferView", Kind::Index), optional("byteOffset", Kind::Size),
-                            required("componentType", Kind::Index)}};
+  static const Shape shape{
+      {required("bufferView", Kind::Index), optional("byteOffset", Kind::Index),
+       constrained(required("componentType", Kind::Index), kIndexComponentTypes)}};
   return shape;
 }
 const Shape& sparseValues() {
   static const Shape shape{
-      {required("bufferView", Kind::Index), optional("byteOffset", Kind::Size)}};
+      {required("bufferView", Kind::Index), optional("byteOffset", Kind::Index)}};
   return shape;
 }
 const Shape& sparse() {
@@ -135,16 +182,18 @@ const Shape& sparse() {
 }
 const Shape& accessor() {
   static const Shape shape{{optional("bufferView", Kind::Index), optional("byteOffset", Kind::Size),
-                            required("componentType", Kind::Index),
+                            constrained(required("componentType", Kind::Index), kComponentTypes),
                             optional("normalized", Kind::Bool), required("count", Kind::Count),
-                            required("type", Kind::String), array("max", Kind::Number),
-                            array("min", Kind::Number), object("sparse", sparse())}};
+                            constrained(required("type", Kind::String), kAccessorTypes),
+                            array("max", Kind::Number), array("min", Kind::Number),
+                            object("sparse", sparse())}};
   return shape;
 }
 const Shape& bufferView() {
   static const Shape shape{{required("buffer", Kind::Index), optional("byteOffset", Kind::Size),
-                            required("byteLength", Kind::Count), optional("byteStride", Kind::Size),
-                            optional("target", Kind::Index)}};
+                            required("byteLength", Kind::Count),
+                            constrained(optional("byteStride", Kind::Size), kByteStride),
+                            constrained(optional("target", Kind::Index), kBufferViewTargets)}};
   return shape;
 }
 const Shape& buffer() {
@@ -161,22 +210,28 @@ const Shape& texture() {
   return shape;
 }
 const Shape& sampler() {
-  static const Shape shape{{optional("magFilter", Kind::Index), optional("minFilter", Kind::Index),
-                            optional("wrapS", Kind::Index), optional("wrapT", Kind::Index)}};
+  static const Shape shape{{constrained(optional("magFilter", Kind::Index), kMagFilters),
+                            constrained(optional("minFilter", Kind::Index), kMinFilters),
+                            constrained(optional("wrapS", Kind::Index), kWraps),
+                            constrained(optional("wrapT", Kind::Index), kWraps)}};
   return shape;
 }
 const Shape& perspective() {
-  static const Shape shape{{optional("aspectRatio", Kind::Number), required("yfov", Kind::Number),
-                            optional("zfar", Kind::Number), required("znear", Kind::Number)}};
+  static const Shape shape{{constrained(optional("aspectRatio", Kind::Number), kPositive),
+                            constrained(required("yfov", Kind::Number), kPositive),
+                            constrained(optional("zfar", Kind::Number), kPositive),
+                            constrained(required("znear", Kind::Number), kPositive)}};
   return shape;
 }
 const Shape& orthographic() {
   static const Shape shape{{required("xmag", Kind::Number), required("ymag", Kind::Number),
-                            required("zfar", Kind::Number), required("znear", Kind::Number)}};
+                            constrained(required("zfar", Kind::Number), kPositive),
+                            constrained(required("znear", Kind::Number), kNonNegative)}};
   return shape;
 }
 const Shape& camera() {
-  static const Shape shape{{required("type", Kind::String), object("perspective", perspective()),
+  static const Shape shape{{constrained(required("type", Kind::String), kCameraTypes),
+                            object("perspective", perspective()),
                             object("orthographic", orthographic())}};
   return shape;
 }
@@ -192,12 +247,15 @@ const Shape& anyObject() {
 }
 const Shape& spot() {
   static const Shape shape{
-      {optional("innerConeAngle", Kind::Number), optional("outerConeAngle", Kind::Number)}};
+      {constrained(optional("innerConeAngle", Kind::Number), kInnerConeAngle),
+       constrained(optional("outerConeAngle", Kind::Number), kOuterConeAngle)}};
   return shape;
 }
 const Shape& light() {
-  static const Shape shape{{required("type", Kind::String), array("color", Kind::Number, 3),
-                            optional("intensity", Kind::Number), optional("range", Kind::Number),
+  static const Shape shape{{constrained(required("type", Kind::String), kLightTypes),
+                            constrained(array("color", Kind::Number, 3), kUnitInterval),
+                            constrained(optional("intensity", Kind::Number), kNonNegative),
+                            constrained(optional("range", Kind::Number), kPositive),
                             object("spot", spot())}};
   return shape;
 }
@@ -339,7 +397,50 @@ class Checker {
       return;
     }
     if (!matches(value, member.kind)) fail(path, fmt::format("must be {}", describe(member.kind)));
-    if (member.kind == Kind::Array) checkItems(value, member, path);
+    if (member.kind == Kind::Array) {
+      checkItems(value, member, path);
+    } else if (member.constraint != nullptr) {
+      checkConstraint(value, *member.constraint, path);
+    }
+  }
+
+  void checkConstraint(const json& value, const Constraint& constraint,
+                       const std::string& path) const {
+    if (!constraint.numbers.empty()) {
+      const bool listed = value.is_number_integer() &&
+                          std::find(constraint.numbers.begin(), constraint.numbers.end(),
+                                    value.get<std::int64_t>()) != constraint.numbers.end();
+      if (!listed) {
+        fail(path, fmt::format("must be one of {}, got {}", fmt::join(constraint.numbers, ", "),
+                               value.dump()));
+      }
+    }
+    if (!constraint.strings.empty()) {
+      const bool listed =
+          value.is_string() && std::any_of(constraint.strings.begin(), constraint.strings.end(),
+                                           [&](const char* text) { return value == text; });
+      if (!listed) {
+        fail(path, fmt::format("must be one of {}, got {}", fmt::join(constraint.strings, ", "),
+                               value.dump()));
+      }
+    }
+    if (!value.is_number()) return;
+    const double number = value.get<double>();
+    const bool belowMinimum = constraint.exclusiveMinimum ? !(number > constraint.minimum)
+                                                          : !(number >= constraint.minimum);
+    if (belowMinimum || !(number <= constraint.maximum)) {
+      fail(path, fmt::format("must be {} {}{}, got {}",
+                             constraint.exclusiveMinimum ? "greater than" : "at least",
+                             constraint.minimum,
+                             std::isinf(constraint.maximum)
+                                 ? std::string()
+                                 : fmt::format(" and at most {}", constraint.maximum),
+                             value.dump()));
+    }
+    if (constraint.multipleOf > 0 && value.get<std::int64_t>() % constraint.multipleOf != 0) {
+      fail(path,
+           fmt::format("must be a multiple of {}, got {}", constraint.multipleOf, value.dump()));
+    }
   }
 
   void checkItems(const json& array, const Member& member, const std::string& path) const {
@@ -353,6 +454,8 @@ class Checker {
         checkObject(array[i], *member.shape, itemPath);
       } else if (!matches(array[i], member.items)) {
         fail(itemPath, fmt::format("must be {}", describe(member.items)));
+      } else if (member.constraint != nullptr) {
+        checkConstraint(array[i], *member.constraint, itemPath);
       }
     }
   }

@@ -1,0 +1,52 @@
+// A fixed set of worker threads for CPU work beside the render thread: lghd and lgh-render encode
+// frames on one (--encode-threads), and the PNG encoder spreads a large image's deflate strips over
+// its idle workers. parallelFor() runs on the calling thread too, so a task may call it without
+// waiting on itself: a busy pool degrades to serial work, never to a deadlock.
+#pragma once
+
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace lgh {
+
+class TaskPool {
+ public:
+  // `threads` < 1 means one per hardware thread.
+  explicit TaskPool(int threads);
+  // Runs what is queued, then joins the workers.
+  ~TaskPool();
+  TaskPool(const TaskPool&) = delete;
+  TaskPool& operator=(const TaskPool&) = delete;
+
+  int threads() const { return static_cast<int>(workers_.size()); }
+  // Queues `task`; a task must not throw (wrap it: nobody would see the exception).
+  void submit(std::function<void()> task);
+  // Runs body(0) .. body(count - 1) on the calling thread and on workers that are idle now;
+  // returns when all have run. The first exception a body throws is rethrown here.
+  void parallelFor(std::size_t count, const std::function<void(std::size_t)>& body);
+  // Workers waiting for work at this moment (a hint: it may change at once).
+  int idleWorkers() const;
+  // Blocks until no task is queued or running.
+  void waitIdle();
+
+  // One per hardware thread (at least 1).
+  static int hardwareThreads();
+
+ private:
+  void work();
+
+  mutable std::mutex mutex_;
+  std::condition_variable workAvailable_;
+  std::condition_variable idle_;
+  std::deque<std::function<void()>> tasks_;
+  int running_ = 0;
+  bool stopping_ = false;
+  std::vector<std::thread> workers_;
+};
+
+}  // namespace lgh

@@ -1,0 +1,116 @@
+#include "lgh/task_pool.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <memory>
+
+namespace lgh {
+
+int TaskPool::hardwareThreads() {
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+TaskPool::TaskPool(int threads) {
+  const int count = threads < 1 ? hardwareThreads() : threads;
+  workers_.reserve(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) workers_.emplace_back([this] { work(); });
+}
+
+TaskPool::~TaskPool() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  workAvailable_.notify_all();
+  for (std::thread& worker : workers_) worker.join();
+}
+
+void TaskPool::submit(std::function<void()> task) {
+  {
+    std::lock_guard lock(mutex_);
+    tasks_.push_back(std::move(task));
+  }
+  workAvailable_.notify_one();
+}
+
+int TaskPool::idleWorkers() const {
+  std::lock_guard lock(mutex_);
+  const int waiting = threads() - running_ - static_cast<int>(tasks_.size());
+  return std::max(waiting, 0);
+}
+
+void TaskPool::waitIdle() {
+  std::unique_lock lock(mutex_);
+  idle_.wait(lock, [this] { return tasks_.empty() && running_ == 0; });
+}
+
+void TaskPool::work() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    workAvailable_.wait(lock, [this] { return stopping_ || !tasks_.empty(); });
+    if (tasks_.empty()) return;  // stopping, and nothing left to run
+    std::function<void()> task = std::move(tasks_.front());
+    tasks_.pop_front();
+    ++running_;
+    lock.unlock();
+    task();
+    lock.lock();
+    --running_;
+    if (tasks_.empty() && running_ == 0) idle_.notify_all();
+  }
+}
+
+namespace {
+
+// The indices of one parallelFor, claimed one at a time by the caller and by helper tasks. A
+// helper that starts after every index is claimed returns at once.
+struct ParallelRange {
+  ParallelRange(std::size_t count, const std::function<void(std::size_t)>& body)
+      : count(count), body(body) {}
+
+  void runClaimed() {
+    for (std::size_t i = next.fetch_add(1); i < count; i = next.fetch_add(1)) {
+      try {
+        body(i);
+      } catch (...) {
+        std::lock_guard lock(mutex);
+        if (!error) error = std::current_exception();
+      }
+      std::lock_guard lock(mutex);
+      if (++done == count) finished.notify_all();
+    }
+  }
+
+  const std::size_t count;
+  const std::function<void(std::size_t)>& body;
+  std::atomic<std::size_t> next{0};
+  std::mutex mutex;
+  std::condition_variable finished;
+  std::size_t done = 0;
+  std::exception_ptr error;
+};
+
+}  // namespace
+
+void TaskPool::parallelFor(std::size_t count, const std::function<void(std::size_t)>& body) {
+  if (count == 0) return;
+  auto range = std::make_shared<ParallelRange>(count, body);
+  const auto helpers = std::min<std::size_t>(count - 1, static_cast<std::size_t>(idleWorkers()));
+  if (helpers > 0) {
+    {
+      std::lock_guard lock(mutex_);
+      // At the front: a started image finishes before the next one begins.
+      for (std::size_t i = 0; i < helpers; ++i) {
+        tasks_.emplace_front([range] { range->runClaimed(); });
+      }
+    }
+    workAvailable_.notify_all();
+  }
+  range->runClaimed();
+  std::unique_lock lock(range->mutex);
+  range->finished.wait(lock, [&] { return range->done == count; });
+  if (range->error) std::rethrow_exception(range->error);
+}
+
+}  // namespace lgh

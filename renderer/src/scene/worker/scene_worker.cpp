@@ -1,0 +1,401 @@
+#include "scene/worker/scene_worker.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/mman.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <limits>
+#include <new>
+#include <span>
+#include <thread>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "lgh/scene_worker.hpp"
+#include "scene/gltf/gltf_loader.hpp"
+
+extern char** environ;
+
+namespace lgh::worker {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// AddressSanitizer reserves terabytes of address space for its shadow memory, which no data
+// limit can hold; sanitized builds run the worker without one.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kAddressSanitizer = true;
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+
+// A message is a sealed memfd holding its bytes, passed over the socket (SCM_RIGHTS) with its
+// size: the bytes are written once and read once, where a socket would copy them twice more. The
+// seals (no writes, no shrinking) keep a worker gone bad from changing or truncating the bytes
+// while the renderer reads them, which would otherwise fault the renderer's process.
+constexpr unsigned kSeals = F_SEAL_SEAL | F_SEAL_SHRINK | F_SEAL_GROW | F_SEAL_WRITE;
+
+class UniqueFd {
+ public:
+  explicit UniqueFd(int fd = -1) : fd_(fd) {}
+  ~UniqueFd() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  UniqueFd(const UniqueFd&) = delete;
+  UniqueFd& operator=(const UniqueFd&) = delete;
+  int get() const { return fd_; }
+
+ private:
+  int fd_;
+};
+
+bool sendMessage(int socket, const Encoded& message) {
+  const UniqueFd memory(::memfd_create("lgh-scene-message", MFD_CLOEXEC | MFD_ALLOW_SEALING));
+  const std::size_t size = std::max<std::size_t>(message.size, 1);
+  if (memory.get() < 0 || ::ftruncate(memory.get(), static_cast<off_t>(size)) != 0) return false;
+  // MAP_POPULATE: the pages in one go, rather than one fault each while writing.
+  void* mapped =
+      ::mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_POPULATE, memory.get(), 0);
+  if (mapped == MAP_FAILED) return false;
+  message.write(static_cast<std::uint8_t*>(mapped));
+  ::munmap(mapped, size);
+  if (::fcntl(memory.get(), F_ADD_SEALS, kSeals) != 0) return false;
+  std::uint64_t length = message.size;
+  iovec part{&length, sizeof(length)};
+  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))] = {};
+  msghdr header{};
+  header.msg_iov = &part;
+  header.msg_iovlen = 1;
+  header.msg_control = control;
+  header.msg_controllen = sizeof(control);
+  cmsghdr* rights = CMSG_FIRSTHDR(&header);
+  rights->cmsg_level = SOL_SOCKET;
+  rights->cmsg_type = SCM_RIGHTS;
+  rights->cmsg_len = CMSG_LEN(sizeof(int));
+  const int fd = memory.get();
+  std::memcpy(CMSG_DATA(rights), &fd, sizeof(fd));
+  ssize_t sent = -1;
+  do {
+    sent = ::sendmsg(socket, &header, MSG_NOSIGNAL);
+  } while (sent < 0 && errno == EINTR);
+  return sent == static_cast<ssize_t>(sizeof(length));
+}
+
+// A received message, mapped read-only for as long as it lives.
+class Message {
+ public:
+  Message() = default;
+  ~Message() {
+    if (data_ != nullptr) ::munmap(data_, std::max<std::size_t>(size_, 1));
+  }
+  Message(const Message&) = delete;
+  Message& operator=(const Message&) = delete;
+
+  std::span<const std::uint8_t> bytes() const {
+    return {static_cast<const std::uint8_t*>(data_), size_};
+  }
+  void map(int fd, std::size_t size) {
+    data_ = ::mmap(nullptr, std::max<std::size_t>(size, 1), PROT_READ, MAP_SHARED | MAP_POPULATE,
+                   fd, 0);
+    if (data_ == MAP_FAILED) data_ = nullptr;
+    size_ = data_ != nullptr ? size : 0;
+  }
+  bool mapped() const { return data_ != nullptr; }
+
+ private:
+  void* data_ = nullptr;
+  std::size_t size_ = 0;
+};
+
+enum class ReadResult { Done, Closed, TimedOut, Malformed };
+
+// Waits for the next message until `deadline` (none: as long as it takes) and maps it, when it is
+// sealed and at most `maxBytes` long.
+ReadResult receiveMessage(int socket, const Clock::time_point* deadline, std::uint64_t maxBytes,
+                          Message& message) {
+  while (deadline != nullptr) {
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(*deadline - Clock::now());
+    if (left.count() <= 0) return ReadResult::TimedOut;
+    pollfd entry{socket, POLLIN, 0};
+    const int ready = ::poll(&entry, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
+    if (ready > 0) break;
+    if (ready < 0 && errno != EINTR) return ReadResult::Closed;
+  }
+  std::uint64_t length = 0;
+  iovec part{&length, sizeof(length)};
+  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))] = {};
+  msghdr header{};
+  header.msg_iov = &part;
+  header.msg_iovlen = 1;
+  header.msg_control = control;
+  header.msg_controllen = sizeof(control);
+  ssize_t received = -1;
+  do {
+    received = ::recvmsg(socket, &header, MSG_CMSG_CLOEXEC);
+  } while (received < 0 && errno == EINTR);
+  if (received <= 0) return ReadResult::Closed;
+  const cmsghdr* rights = CMSG_FIRSTHDR(&header);
+  if (rights == nullptr || rights->cmsg_type != SCM_RIGHTS ||
+      rights->cmsg_len != CMSG_LEN(sizeof(int))) {
+    return ReadResult::Malformed;
+  }
+  int fd = -1;
+  std::memcpy(&fd, CMSG_DATA(rights), sizeof(fd));
+  const UniqueFd memory(fd);
+  struct stat status {};
+  const bool whole =
+      received == static_cast<ssize_t>(sizeof(length)) && length <= maxBytes &&
+      ::fstat(fd, &status) == 0 &&
+      static_cast<std::uint64_t>(status.st_size) >= std::max<std::uint64_t>(length, 1) &&
+      (static_cast<unsigned>(::fcntl(fd, F_GET_SEALS)) & kSeals) == kSeals;
+  if (!whole) return ReadResult::Malformed;
+  message.map(fd, static_cast<std::size_t>(length));
+  return message.mapped() ? ReadResult::Done : ReadResult::Malformed;
+}
+
+// The worker says it is ready with one byte, once its libraries are loaded.
+constexpr char kReady = 'R';
+constexpr auto kStartupTimeout = std::chrono::seconds(60);
+
+bool sendReady(int socket) {
+  ssize_t sent = -1;
+  do {
+    sent = ::send(socket, &kReady, 1, MSG_NOSIGNAL);
+  } while (sent < 0 && errno == EINTR);
+  return sent == 1;
+}
+
+bool waitForReady(int socket, Clock::time_point deadline) {
+  for (;;) {
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+    if (left.count() <= 0) return false;
+    pollfd entry{socket, POLLIN, 0};
+    const int ready = ::poll(&entry, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
+    if (ready < 0 && errno != EINTR) return false;
+    if (ready <= 0) continue;
+    char byte = 0;
+    const ssize_t received = ::recv(socket, &byte, 1, 0);
+    return received == 1 && byte == kReady;
+  }
+}
+
+std::string describeStatus(int status) {
+  if (WIFEXITED(status)) return fmt::format("exit status {}", WEXITSTATUS(status));
+  if (WIFSIGNALED(status)) {
+    const int signal = WTERMSIG(status);
+    return fmt::format("signal {} ({})", signal, strsignal(signal));
+  }
+  return "an unknown end";
+}
+
+void setLimit(pid_t pid, __rlimit_resource resource, rlim_t value) {
+  const rlimit limit{value, value};
+  if (::prlimit(pid, resource, &limit, nullptr) != 0) {
+    spdlog::warn("scene worker: could not set resource limit {}: {}", static_cast<int>(resource),
+                 std::strerror(errno));
+  }
+}
+
+Scene loadInThisProcess(const LoadJob& job) {
+  return loadSceneSource(job.source, job.assetRoot, job.limits, job.options);
+}
+
+}  // namespace
+
+SceneWorker::SceneWorker(SceneWorkerOptions options) : options_(std::move(options)) {
+  try {
+    start();
+  } catch (const Error& error) {
+    // Not fatal here: the first load tries again and fails that load if it still cannot.
+    spdlog::error("scene worker: {}", error.message());
+  }
+}
+
+SceneWorker::~SceneWorker() { stop(false); }
+
+void SceneWorker::start() {
+  int sockets[2];
+  if (::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, sockets) != 0) {
+    throw Error(
+        ErrorCode::Unavailable,
+        fmt::format("the scene parser worker cannot start: socketpair: {}", std::strerror(errno)));
+  }
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, sockets[1], kSceneWorkerFd);
+  // The daemon's client sockets and files are no business of the worker's.
+  posix_spawn_file_actions_addclosefrom_np(&actions, kSceneWorkerFd + 1);
+  std::vector<std::string> argv = {options_.executable.string()};
+  argv.insert(argv.end(), options_.arguments.begin(), options_.arguments.end());
+  std::vector<char*> pointers;
+  pointers.reserve(argv.size() + 1);
+  for (std::string& argument : argv) pointers.push_back(argument.data());
+  pointers.push_back(nullptr);
+  pid_t pid = -1;
+  const int failed =
+      ::posix_spawn(&pid, argv.front().c_str(), &actions, nullptr, pointers.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(sockets[1]);
+  if (failed != 0) {
+    ::close(sockets[0]);
+    throw Error(ErrorCode::Unavailable,
+                fmt::format("the scene parser worker cannot start: {}: {}",
+                            options_.executable.string(), std::strerror(failed)));
+  }
+  pid_ = pid;
+  socket_ = sockets[0];
+  // Before it gets any work: no core files of crashes, and the memory limit.
+  setLimit(pid_, RLIMIT_CORE, 0);
+  if (!kAddressSanitizer) setLimit(pid_, RLIMIT_DATA, options_.memoryBytes);
+  // Its start-up (loading its libraries) must not count against the first load's time limit.
+  const auto started = Clock::now();
+  if (!waitForReady(socket_, started + kStartupTimeout)) {
+    const std::string end = stop(true);
+    throw Error(ErrorCode::Unavailable,
+                fmt::format("the scene parser worker did not start ({})", end));
+  }
+  spdlog::info("scene worker: pid {} ready in {:.0f} ms", pid_,
+               std::chrono::duration<double, std::milli>(Clock::now() - started).count());
+}
+
+std::string SceneWorker::stop(bool kill) {
+  if (socket_ >= 0) ::close(socket_);
+  socket_ = -1;
+  if (pid_ < 0) return "not running";
+  if (kill) ::kill(pid_, SIGKILL);
+  int status = 0;
+  // A worker told to end by the closed socket exits at once; give it a moment, then kill it.
+  for (int attempt = 0; attempt < 200; ++attempt) {
+    const pid_t reaped = ::waitpid(pid_, &status, WNOHANG);
+    if (reaped == pid_ || (reaped < 0 && errno != EINTR)) break;
+    if (attempt == 199) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, &status, 0);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  pid_ = -1;
+  return describeStatus(status);
+}
+
+LoadOutcome SceneWorker::exchange(const LoadJob& job, const std::string& displayName) {
+  if (pid_ < 0) start();
+  if (!sendMessage(socket_, encodeJob(job))) {
+    const std::string end = stop(true);
+    throw Error(ErrorCode::Unavailable,
+                fmt::format("the scene parser worker stopped before taking the asset ({})", end));
+  }
+  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(options_.timeoutSeconds));
+  Message answer;
+  // The answer cannot be larger than what the worker may hold in memory.
+  const ReadResult result =
+      receiveMessage(socket_, &deadline, options_.memoryBytes + (std::uint64_t{1} << 20), answer);
+  if (result == ReadResult::TimedOut) {
+    stop(true);
+    spdlog::error("scene worker: {} took longer than {} s to parse; the worker was killed",
+                  displayName, options_.timeoutSeconds);
+    throw Error(ErrorCode::TooLarge,
+                fmt::format("parsing the asset took longer than this server's limit of {} s",
+                            options_.timeoutSeconds),
+                displayName);
+  }
+  if (result != ReadResult::Done) {
+    const std::string end = stop(true);
+    spdlog::error("scene worker: {} parsing {} ({}); a new worker starts with the next load",
+                  result == ReadResult::Closed ? "crashed" : "answered garbage", displayName, end);
+    throw Error(ErrorCode::Invalid,
+                fmt::format("the asset crashed the scene parser ({}); it is refused, and the "
+                            "server goes on with a new parser",
+                            end),
+                displayName);
+  }
+  LoadOutcome outcome;
+  try {
+    outcome = decodeOutcome(answer.bytes());
+  } catch (const Error&) {
+    stop(true);
+    throw;
+  }
+  // The loader's words for an allocation that failed; here, one its memory limit refused.
+  if (auto* error = std::get_if<Error>(&outcome);
+      error != nullptr && error->code() == ErrorCode::TooLarge &&
+      error->message().find("more memory than") != std::string::npos) {
+    outcome = Error(ErrorCode::TooLarge,
+                    fmt::format("the asset needs more memory than this server's scene parser may "
+                                "use ({} MiB)",
+                                options_.memoryBytes >> 20U),
+                    error->field());
+  }
+  return outcome;
+}
+
+Scene SceneWorker::load(const LoadJob& job) {
+  const std::lock_guard lock(mutex_);
+  const std::string name =
+      job.source.displayName.empty() ? job.source.assetPath : job.source.displayName;
+  LoadOutcome outcome = exchange(job, name);
+  if (auto* error = std::get_if<Error>(&outcome)) throw *error;
+  return std::move(std::get<Scene>(outcome));
+}
+
+}  // namespace lgh::worker
+
+namespace lgh {
+
+int runSceneParserWorker(int fd, const std::string& testCrashMarker) {
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // never outlive the daemon
+  if (!worker::sendReady(fd)) return 1;
+  for (;;) {
+    worker::LoadOutcome outcome = Error(ErrorCode::Internal, "no load happened");
+    {
+      worker::Message request;
+      const worker::ReadResult result =
+          worker::receiveMessage(fd, nullptr, std::numeric_limits<std::uint64_t>::max(), request);
+      if (result == worker::ReadResult::Closed) return 0;  // the renderer is done with us
+      if (result != worker::ReadResult::Done) return 1;
+      try {
+        const worker::LoadJob job = worker::decodeJob(request.bytes());
+        if (!testCrashMarker.empty() &&
+            job.source.displayName.find(testCrashMarker) != std::string::npos) {
+          std::raise(SIGSEGV);
+        }
+        outcome = worker::loadInThisProcess(job);
+      } catch (const Error& error) {
+        outcome = error;
+      } catch (const std::bad_alloc&) {
+        outcome = Error(ErrorCode::TooLarge,
+                        "the asset needs more memory than the scene parser's limit allows");
+      } catch (const std::exception& error) {
+        outcome =
+            Error(ErrorCode::Internal, fmt::format("the scene parser failed: {}", error.what()));
+      }
+    }
+    if (!worker::sendMessage(fd, worker::encodeOutcome(outcome))) return 1;
+  }
+}
+
+}  // namespace lgh

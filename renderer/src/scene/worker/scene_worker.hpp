@@ -1,0 +1,44 @@
+// The renderer's side of the scene parser worker (lgh/scene_worker.hpp): one child process that
+// parses untrusted assets, started on construction, restarted after it dies. A load that crashes
+// it, runs past the time limit or outgrows its memory limit fails that load with an lgh::Error,
+// and the next load gets a fresh worker. Loads from several threads (the render thread and scene
+// prefetches) take turns.
+#pragma once
+
+#include <sys/types.h>
+
+#include <mutex>
+#include <string>
+
+#include "lgh/renderer_options.hpp"
+#include "scene/worker/scene_wire.hpp"
+
+namespace lgh::worker {
+
+class SceneWorker {
+ public:
+  explicit SceneWorker(SceneWorkerOptions options);
+  ~SceneWorker();
+  SceneWorker(const SceneWorker&) = delete;
+  SceneWorker& operator=(const SceneWorker&) = delete;
+
+  // Throws lgh::Error: the loader's own, TooLarge past the time or memory limit, Invalid when the
+  // asset crashed the worker, Unavailable when no worker can be started.
+  Scene load(const LoadJob& job);
+
+  pid_t pid() const { return pid_; }
+
+ private:
+  void start();
+  // Ends the worker: closes its socket, kills it when `kill` (else lets it exit), reaps it.
+  // Returns how it ended, for messages ("exit 0", "signal 11 (Segmentation fault)").
+  std::string stop(bool kill);
+  LoadOutcome exchange(const LoadJob& job, const std::string& displayName);
+
+  SceneWorkerOptions options_;
+  std::mutex mutex_;  // one load at a time
+  pid_t pid_ = -1;
+  int socket_ = -1;
+};
+
+}  // namespace lgh::worker
