@@ -7,6 +7,8 @@
 // the image's top row, so no one flips them on the CPU):
 //   LGH_DISPLAY_OUTPUT  PNG: exposure, tone map and sRGB as 8-bit codes (RGBA8UI target)
 //   otherwise           EXR: linear light (RGBA16F or RGBA32F target)
+//   LGH_SCENE_TARGET    frames with blended surfaces: linear light into the scene target, rows as
+//                       GL stores them (the display pass turns them over after the forward blend)
 
 #include "include/slots.glsl"
 #ifdef LGH_DISPLAY_OUTPUT
@@ -42,7 +44,11 @@ vec4 linearColor(ivec2 pixel) {
 }
 
 void main() {
+#ifdef LGH_SCENE_TARGET
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+#else
   ivec2 pixel = ivec2(int(gl_FragCoord.x), uHeight - 1 - int(gl_FragCoord.y));
+#endif
   vec4 color = linearColor(pixel);
 #ifdef LGH_DISPLAY_OUTPUT
   outCode = uvec4(lghDisplayChannel(color.r, uToneMap, uExposure),

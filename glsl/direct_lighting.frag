@@ -1,16 +1,21 @@
 #version 450 core
-// Direct lighting pass: every analytic light of the scene evaluated with the glTF BRDF over the
-// G-buffer, times its visibility from the shadow rays (1 for lights without), plus emission and a
-// constant ambient term.
+// Direct lighting pass: the lecture's illumination equation over the G-buffer,
+//   emission + global ambient x ambient material
+//   + sum over the analytic lights of (ambient part + visibility x (diffuse + specular part))
+// with each material model's lobes (include/light_terms.glsl, include/brdf.glsl). Per-light
+// ambient is never shadowed; the diffuse and specular parts are scaled by the shadow rays'
+// visibility (1 for lights without) and by relief mapping's self-shadowing.
+// Gouraud and flat surfaces bring the diffuse + specular sum evaluated per vertex or per
+// primitive; their pixels scale it by the ratio of their shadowed to their unshadowed per-pixel
+// sum (the ratio estimator the LGH's shadows use too), so that shadows keep the pixel's detail.
 // Inputs: G-buffer (include/gbuffer.glsl), lights SSBO, shadow-ray visibility bits.
 // Output: HDR radiance.
 
 #define LGH_READ_VISIBILITY
+#define LGH_LIGHTS_BUFFER
 #include "include/gbuffer.glsl"
-#include "include/lights.glsl"
+#include "include/light_terms.glsl"
 #include "include/ray_batch.glsl"
-
-layout(std430, binding = LGH_BIND_LIGHTS) readonly buffer Lights { Light lights[]; };
 
 uniform int uLightCount;
 uniform vec3 uCameraPosition;
@@ -18,6 +23,11 @@ uniform float uAmbient;
 uniform int uFrameWidth;
 
 layout(location = 0) out vec4 outRadiance;
+
+// Relief mapping hides light i where bit i of the pixel's mask is set (first 23 lights).
+float selfShadowVisibility(SurfacePoint s, int light) {
+  return light < 23 && (s.selfShadowMask & (1u << uint(light))) != 0u ? 0.0 : 1.0;
+}
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -30,12 +40,21 @@ void main() {
   vec3 radiance = texelFetch(gEmissive, pixel, 0).rgb;
   radiance += uAmbient * ambientResponse(s);
   uint pixelIndex = uint(pixel.y) * uint(uFrameWidth) + uint(pixel.x);
+  vec3 shadowed = vec3(0.0);
+  vec3 unshadowed = vec3(0.0);
   for (int i = 0; i < uLightCount; ++i) {
-    vec3 toLight;
-    vec3 incident = incidentLight(lights[i], s.position, toLight);
-    vec3 reflected = incident * evaluateBrdfCosine(s, toViewer, toLight);
-    if (any(greaterThan(reflected, vec3(0.0)))) reflected *= directLightVisibility(pixelIndex, i);
-    radiance += reflected;
+    LightTerms terms = lightTerms(lights[i], s, toViewer);
+    radiance += terms.ambient;
+    unshadowed += terms.direct;
+    if (any(greaterThan(terms.direct, vec3(0.0)))) {
+      shadowed += terms.direct * directLightVisibility(pixelIndex, i) * selfShadowVisibility(s, i);
+    }
+  }
+  if (s.hasVertexLit) {
+    float total = luminance(unshadowed);
+    radiance += s.vertexLit * (total > 0.0 ? luminance(shadowed) / total : 1.0);
+  } else {
+    radiance += shadowed;
   }
   outRadiance = vec4(radiance, 1.0);
 }

@@ -3,39 +3,19 @@
 // uLineWidth pixels wide (core-profile GL draws no lines wider than 1 pixel reliably), so lines
 // have the requested width on every driver. Attributes are those of the segment's ends.
 
+#include "include/gbuffer_vertex.glsl"
+
 layout(lines) in;
 layout(triangle_strip, max_vertices = 4) out;
 
 uniform vec2 uViewportSize;  // pixels
 uniform float uLineWidth;    // pixels
 
-in VertexData {
-  vec3 worldPosition;
-  vec3 normal;
-  vec4 tangent;
-  vec2 uv0;
-  vec2 uv1;
-  vec4 color;
-  vec2 sprite;
-} vin[];
-
-out VertexData {
-  vec3 worldPosition;
-  vec3 normal;
-  vec4 tangent;
-  vec2 uv0;
-  vec2 uv1;
-  vec4 color;
-  vec2 sprite;
-} vout;
+in VertexData { GBUFFER_VERTEX_MEMBERS } vin[];
+out VertexData { GBUFFER_VERTEX_MEMBERS } vout;
 
 void emit(int i, vec2 offsetNdc) {
-  vout.worldPosition = vin[i].worldPosition;
-  vout.normal = vin[i].normal;
-  vout.tangent = vin[i].tangent;
-  vout.uv0 = vin[i].uv0;
-  vout.uv1 = vin[i].uv1;
-  vout.color = vin[i].color;
+  GBUFFER_COPY_VERTEX(vout, vin[i])
   vout.sprite = vec2(0.0);
   vec4 clip = gl_in[i].gl_Position;
   gl_Position = clip + vec4(offsetNdc * clip.w, 0.0, 0.0);

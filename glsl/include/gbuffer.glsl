@@ -1,16 +1,24 @@
 // G-buffer layout: written by gbuffer.frag, read by every lighting pass through these helpers.
-//   0 position   RGBA32F  world position xyz, w = 1 where geometry was drawn
+//   0 position   RGBA32F  world position xyz, w = 1 + relief self-shadow mask where geometry was
+//                         drawn (bit i: analytic light i is hidden by the height field; a float
+//                         holds the integers of the first 23 bits exactly), 0 elsewhere
 //   1 normal     RGBA16F  world normal xyz (unit, facing the camera), w unused
 //   2 albedo     RGBA8    base colour (linear, stored in an sRGB target), a = occlusion
 //   3 material   RGBA8    metallic, roughness, model (MATERIAL_MODEL_*, as byte / 255),
-//                         layers (MATERIAL_LAYER_* bits, as byte / 255)
+//                         layers (MATERIAL_LAYER_* bits, as byte / 255; classic models:
+//                         MATERIAL_CLASSIC_* flags)
 //   4 emissive   RGBA16F  emitted radiance rgb (unlit surfaces: their colour), a unused
 //   6 layers     RGBA32UI the layers' parameters, read only where the layer bits are set:
 //                  x  unorm8 x4: clearcoat, clearcoat roughness, sheen roughness, transmission
 //                  y  unorm8 x4: sheen colour rgb, specular weight
 //                  z  unorm8 x4: sqrt(dielectric F0) rgb, volume tint (grey, see MATERIALS.md)
 //                  w  snorm16 x2: clearcoat normal, octahedral
-//                Models added later keep their parameters here too (x..w of their own meaning).
+//                The classic models (Phong and up) always write it, with their own meaning:
+//                  x  unorm8 x4: ambient colour rgb, unused
+//                  y  unorm8 x4: sqrt(specular colour) rgb (Cook-Torrance: sqrt(F0)), unused
+//                  z  float: shininess (Phong, Blinn-Phong), sigma (Oren-Nayar), m (Cook-Torrance)
+//                  w  RGB9E5: the lights' diffuse + specular terms per vertex (Gouraud) or per
+//                     primitive (flat), where MATERIAL_CLASSIC_VERTEX_LIT is set
 // Texture unit 5 belongs to the passes (atlas, depth, shadow ratio): the layers sit at unit
 // LGH_UNIT_GBUFFER_LAYERS (6).
 #ifndef LGH_GBUFFER_GLSL
@@ -34,8 +42,14 @@ bool readSurface(ivec2 pixel, out SurfacePoint s) {
   s = defaultSurface(position.xyz, normalize(texelFetch(gNormal, pixel, 0).xyz), albedo.rgb,
                      material.r, material.g, albedo.a);
   s.model = uint(material.b * 255.0 + 0.5);
-  s.layers = uint(material.a * 255.0 + 0.5);
-  if (s.layers != 0u) decodeLayers(texelFetch(gLayers, pixel, 0), s);
+  uint flags = uint(material.a * 255.0 + 0.5);
+  if (isClassicModel(s.model)) {
+    decodeClassic(texelFetch(gLayers, pixel, 0), flags, s);
+  } else {
+    s.layers = flags;
+    if (s.layers != 0u) decodeLayers(texelFetch(gLayers, pixel, 0), s);
+  }
+  s.selfShadowMask = uint(max(position.w - 1.0, 0.0) + 0.5);
   return position.w > 0.5;
 }
 

@@ -140,8 +140,9 @@ struct GiLightSample {
 };
 
 // One sample of the light arriving at `x`: a source picked by power (`pick`), a point on it
-// (`u`), its light as the direct lighting computes it (analytic lights: include/lights.glsl's
-// incidentLight) or as a Lambertian emitter (triangles: L cos_y A / d^2).
+// (`u`), its light as the direct lighting's diffuse lobe computes it (analytic lights: the
+// light's diffuse colour x include/lights.glsl's lightFalloff) or as a Lambertian emitter
+// (triangles: L cos_y A / d^2).
 GiLightSample giSampleLight(vec3 x, float pick, vec2 u) {
   uint index = giPickSource(pick);
   float probability = max(giSourceProbability(index), 1e-30);
@@ -163,7 +164,7 @@ GiLightSample giSampleLight(vec3 x, float pick, vec2 u) {
   }
   Light analytic = giLights[source.info.y];
   vec3 toLight;
-  light.incident = incidentLight(analytic, x, toLight) / probability;
+  light.incident = analytic.diffuse.rgb * lightFalloff(analytic, x, toLight) / probability;
   light.direction = toLight;
   light.distance = giLightType(analytic) == LIGHT_DIRECTIONAL
                        ? GI_FAR

@@ -1,9 +1,11 @@
-// Analytic lights as the direct-lighting pass and the references read them from an SSBO, with the
-// lecture's distance attenuation 1/(kc + kl*d + kq*d^2) and spot effect.
+// Analytic lights as the lighting passes read them from an SSBO, with the lecture's distance
+// attenuation 1/(kc + kl*d + kq*d^2), spot effect and per-light ambient, diffuse and specular
+// colours (include/light_terms.glsl combines them with the BRDF).
 #ifndef LGH_LIGHTS_GLSL
 #define LGH_LIGHTS_GLSL
 
 #include "include/common.glsl"
+#include "include/slots.glsl"
 
 const int LIGHT_DIRECTIONAL = 0;
 const int LIGHT_POINT = 1;
@@ -13,10 +15,16 @@ const int LIGHT_SPOT = 2;
 struct Light {
   vec4 positionType;     // xyz position, w type
   vec4 directionRange;   // xyz unit direction the light points to, w range (0: none)
-  vec4 colorIntensity;   // rgb colour, w intensity
+  vec4 ambient;          // rgb: ambient colour x intensity, w unused
+  vec4 diffuse;          // rgb: diffuse colour x intensity (the light's colour unless set)
+  vec4 specular;         // rgb: specular colour x intensity (the light's colour unless set)
   vec4 attenuation;      // kc, kl, kq, spot exponent
   vec4 cone;             // cos(inner), cos(outer), shadow size (radius or angular radius), unused
 };
+
+#ifdef LGH_LIGHTS_BUFFER
+layout(std430, binding = LGH_BIND_LIGHTS) readonly buffer Lights { Light lights[]; };
+#endif
 
 float distanceAttenuation(Light light, float d) {
   vec3 k = light.attenuation.xyz;
@@ -39,20 +47,20 @@ float spotEffect(Light light, vec3 toLight) {
   return falloff * falloff;
 }
 
-// Incident irradiance scale (colour * intensity * attenuation * spot) and direction to the light.
-vec3 incidentLight(Light light, vec3 position, out vec3 toLight) {
+// The lecture's 1 / (kc + kl d + kq d^2) x spot effect at `position` (1 for directional lights),
+// and the direction to the light.
+float lightFalloff(Light light, vec3 position, out vec3 toLight) {
   int type = int(light.positionType.w + 0.5);
-  vec3 radiance = light.colorIntensity.rgb * light.colorIntensity.w;
   if (type == LIGHT_DIRECTIONAL) {
     toLight = -light.directionRange.xyz;
-    return radiance;
+    return 1.0;
   }
   vec3 offset = light.positionType.xyz - position;
   float d = length(offset);
   toLight = offset / max(d, 1e-6);
   float scale = distanceAttenuation(light, d);
   if (type == LIGHT_SPOT) scale *= spotEffect(light, toLight);
-  return radiance * scale;
+  return scale;
 }
 
 #endif

@@ -1,12 +1,15 @@
 #include "frame_pipeline.hpp"
 
+#include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "core/stopwatch.hpp"
 #include "passes/lgh_lighting_common.hpp"
 #include "passes/light_buffer.hpp"
+#include "scene/material_table.hpp"
 
 namespace lgh {
 namespace {
@@ -18,6 +21,20 @@ LightDesc directionalLight(const glm::vec3& direction, float intensity) {
   light.direction = {d.x, d.y, d.z};
   light.intensity = intensity;
   return light;
+}
+
+// What the scene's textures take on the GPU, and what block compression saved.
+std::string textureMemoryText(const GpuScene::TextureMemory& memory) {
+  constexpr double kMiB = 1024.0 * 1024.0;
+  auto mib = [](std::size_t bytes) { return static_cast<double>(bytes) / kMiB; };
+  std::string text = fmt::format("{:.2f} MiB in {} textures", mib(memory.bytes), memory.textures);
+  if (memory.compressed > 0) {
+    const std::size_t saved =
+        memory.uncompressedBytes - std::min(memory.bytes, memory.uncompressedBytes);
+    text += fmt::format(" ({} block-compressed; {:.2f} MiB as RGBA8, saved {:.2f} MiB)",
+                        memory.compressed, mib(memory.uncompressedBytes), mib(saved));
+  }
+  return text;
 }
 
 }  // namespace
@@ -52,23 +69,27 @@ void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached
   const std::vector<LightDesc> lights = frameLights(request, cached.scene, camera, report.warnings);
   const LghSettings& lgh = request.settings.lgh;
   const ShadowSettings& shadowSettings = request.settings.shadows;
+  // The scene's materials with the request's parameters (docs/MATERIALS.md), for this frame.
+  const MaterialTable materials(cached.scene, request.materials);
   targets_.resize(output.width, output.height);
   uploadLights(lights, lightBuffer_);
+  const auto lightCount = static_cast<int>(lights.size());
   {
     gl::ScopedGpuPass pass(timer, "gbuffer");
-    gbufferPass_.run(cached.scene, *cached.gpu, camera, request.settings.primitives, targets_);
+    gbufferPass_.run(
+        {&materials, &camera, &request.settings.primitives, lightBuffer_.id(), lightCount},
+        *cached.gpu, targets_);
   }
   LghFrameLighting::ShadowSamples samples;
   if (lgh.enabled) {
     if (!lghLighting_) lghLighting_ = std::make_unique<LghFrameLighting>();
     if (probe != nullptr) prepareProbe(request, cached, *probe);
-    const LghGiInputs gi{request.settings.gi, lights, lightBuffer_.id(), shadowSettings.tracing,
-                         gi_};
+    const LghGiInputs gi{request.settings.gi,    lights, lightBuffer_.id(),
+                         shadowSettings.tracing, gi_,    materials.materials()};
     lghLighting_->run(lgh, cached, camera, targets_, timer, report, probe, &gi);
     if (probe != nullptr) probe->visibility = nullptr;  // it refers to this frame's scene
     samples = lghLighting_->shadowSamples();
   }
-  const auto lightCount = static_cast<int>(lights.size());
   shadows_.trace({shadowSettings, samplingSeed(lgh), lightBuffer_.id(), lightCount, samples.buffer,
                   samples.count},
                  cached, targets_, timer, report);
@@ -81,9 +102,27 @@ void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached
   const GLuint shadowRatio =
       shadows_.filterLgh(shadowSettings.filterIterations, camera, targets_, timer);
   if (probe != nullptr && lgh.enabled) finishProbe(shadowRatio, camera, *probe);
-  {
+  const bool blends = ForwardBlendPass::needed(materials, *cached.gpu);
+  if (!blends) {
     gl::ScopedGpuPass pass(timer, "composite");
     compositePass_.run(output, pixels, lgh.enabled, shadowRatio, targets_);
+  } else {
+    // Blending happens in linear light: composite into the scene target, blend the surfaces over
+    // it, then the display pass writes what is read back.
+    {
+      gl::ScopedGpuPass pass(timer, "composite");
+      compositePass_.runToScene(output, lgh.enabled, shadowRatio, targets_);
+    }
+    {
+      gl::ScopedGpuPass pass(timer, "forward blend");
+      const int blended = forwardBlendPass_.run(
+          {&materials, &camera, &request.settings.primitives, lightBuffer_.id(), lightCount,
+           request.settings.ambient, gbufferPass_.maxTessellationLevel()},
+          gbufferPass_.programs(), *cached.gpu, targets_);
+      report.decide("blended_surfaces", std::to_string(blended));
+    }
+    gl::ScopedGpuPass pass(timer, "display");
+    displayPass_.run(output, pixels, targets_);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glFlush();  // the GPU starts on the frame while the Vulkan side's timings are waited for
@@ -93,6 +132,12 @@ void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached
   report.deferredRows = std::move(deferred.timings);
   report.decide("lighting", lgh.enabled ? "direct+lgh" : "direct");
   report.decide("lights", std::to_string(lights.size()));
+  report.decide("texture_memory", textureMemoryText(cached.gpu->textureMemory()));
+  // What unset `sampling.anisotropy` gets, and where a request's value is capped.
+  report.decide("texture_anisotropy", fmt::format("{:g}", cached.gpu->maxAnisotropy()));
+  for (std::string& warning : cached.gpu->takeWarnings()) {
+    report.warnings.push_back(std::move(warning));
+  }
 }
 
 void FramePipeline::prepareProbe(const RenderRequest& request, const CachedScene& cached,

@@ -3,9 +3,11 @@
 // picking k shadow samples per pixel] -> shadow
 // rays (GL setup, Vulkan trace) -> direct lighting with visibility -> [LGH shadow ratio +
 // filter] -> composite (display codes for PNG, linear light for EXR) -> pack into a read-back
-// buffer. Owns the passes and the frame targets; the renderer owns the context, the scene cache,
-// the read-back buffers and the frames in flight. The LGH part (passes/lgh_frame_lighting.hpp) is
-// created on the first frame that enables it, so frames without it run exactly as before.
+// buffer; with blended surfaces: composite in linear light -> forward pass of blended surfaces ->
+// display pass -> pack. Owns the passes and the frame targets; the renderer owns the context, the
+// scene cache, the read-back buffers and the frames in flight. The LGH part
+// (passes/lgh_frame_lighting.hpp) is created on the first frame that enables it, so frames without
+// it run exactly as before.
 #pragma once
 
 #include <memory>
@@ -15,6 +17,8 @@
 #include "gl/gpu_timer.hpp"
 #include "passes/composite_pass.hpp"
 #include "passes/direct_lighting_pass.hpp"
+#include "passes/display_pass.hpp"
+#include "passes/forward_blend_pass.hpp"
 #include "passes/frame_targets.hpp"
 #include "passes/gbuffer_pass.hpp"
 #include "passes/lgh_frame_lighting.hpp"
@@ -60,6 +64,8 @@ class FramePipeline {
   GiTracing gi_;
   DirectLightingPass directLightingPass_;
   CompositePass compositePass_;
+  ForwardBlendPass forwardBlendPass_;
+  DisplayPass displayPass_;
   std::unique_ptr<LghFrameLighting> lghLighting_;
 };
 

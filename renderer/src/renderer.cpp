@@ -29,6 +29,7 @@ SceneLoadOptions loadOptionsOf(const RenderRequest& request) {
   options.animation = request.sceneOptions.animation;
   options.materialVariant = request.sceneOptions.materialVariant;
   options.ignoreUnsupportedExtensions = request.settings.ignoreUnsupportedExtensions;
+  options.textureCompression = request.settings.textureCompression;
   return options;
 }
 

@@ -94,6 +94,29 @@ TEST_F(ErrorsTest, LimitsAre413) {
             "/settings/lgh/vpl_count");
 }
 
+// The lecture's material parameters: shape errors 400, ranges and meaning 422, each naming the
+// field; those that need the scene (a material name, a texture index) are found at render time.
+TEST_F(ErrorsTest, BadMaterialParametersNameTheField) {
+  auto material = [](const json& match, const json& parameters) {
+    return json{{"materials", {{{"match", match}, {"parameters", parameters}}}},
+                {"output", {{"width", 32}, {"height", 24}}}};
+  };
+  const json red = {{"name", "red"}};
+  EXPECT_EQ(renderError(material(red, {{"shininess", 5000}}), 422, "invalid")["field"],
+            "/materials/0/parameters/shininess");
+  EXPECT_EQ(renderError(material(red, {{"model", "ward"}}), 400, "bad_request")["field"],
+            "/materials/0/parameters/model");
+  EXPECT_EQ(renderError(material({{"name", "marble"}}, json::object()), 422, "invalid")["field"],
+            "/materials/0/match/name");
+  EXPECT_EQ(renderError(material(red, {{"shading", "gouraud"}}), 422, "invalid")["field"],
+            "/materials/0/parameters/shading");
+  EXPECT_EQ(renderError(material(red, {{"surface", "relief"}}), 422, "invalid")["field"],
+            "/materials/0/parameters/surface");
+  EXPECT_EQ(
+      renderError(material(red, {{"height_texture", {{"texture", 40}}}}), 422, "invalid")["field"],
+      "/materials/0/parameters/height_texture/texture");
+}
+
 TEST_F(ErrorsTest, TooManyTrianglesIs413) {
   renderError(withAsset("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 413, "too_large");
 }

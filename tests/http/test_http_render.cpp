@@ -55,6 +55,34 @@ TEST_F(RenderTest, PngDecodesToRequestedSize) {
   EXPECT_TRUE(cache == "hit" || cache == "miss") << cache;
 }
 
+// The lecture's models and techniques through the daemon: per-request material parameters over
+// the demo's materials, applied to that frame only: the cached demo renders as before afterwards.
+TEST_F(RenderTest, MaterialParametersApplyToTheirRenderOnly) {
+  const json plain = smallRequest(64, 48);
+  json styled = plain;
+  styled["materials"] = {
+      {{"match", {{"name", "floor_checker"}}},
+       {"parameters",
+        {{"surface", "relief"}, {"height_texture", {{"texture", 1}}}, {"height_scale", 0.05}}}},
+      {{"match", {{"name", "white"}}},
+       {"parameters", {{"model", "blinn-phong"}, {"shading", "gouraud"}, {"shininess", 60}}}},
+      {{"match", {{"name", "metal"}}}, {"parameters", {{"alpha_mode", "blend"}, {"alpha", 0.4}}}}};
+  const auto before = postJson(*http, "/v1/render", plain);
+  const auto changed = postJson(*http, "/v1/render", styled, {{"Accept", "application/json"}});
+  const auto after = postJson(*http, "/v1/render", plain);
+  ASSERT_TRUE(before && changed && after);
+  ASSERT_EQ(changed->status, 200) << changed->body;
+  const json answer = json::parse(changed->body);
+  EXPECT_EQ(answer["paths"]["blended_surfaces"], "1");
+  EXPECT_NE(answer["paths"]["texture_memory"].get<std::string>().find("MiB"), std::string::npos);
+  EXPECT_GE(std::stof(answer["paths"]["texture_anisotropy"].get<std::string>()), 1.0F);
+  EXPECT_EQ(changed->get_header_value("X-Lgh-Cache"), "hit") << "the overrides are not a scene";
+  ASSERT_EQ(before->status, 200);
+  ASSERT_EQ(after->status, 200);
+  EXPECT_EQ(decodeBody(before->body).pixels8, decodeBody(after->body).pixels8)
+      << "the cached demo kept its own materials";
+}
+
 TEST_F(RenderTest, ExrDecodesToRequestedSize) {
   const auto result = postJson(*http, "/v1/render", smallRequest(48, 32, "exr-float"));
   ASSERT_TRUE(result);

@@ -4,7 +4,10 @@
 // assets in its worker (--scene-worker on, the default) or in its own process (off). Assets by
 // path and an inline GLB, with the request's scene options (scene.animation,
 // scene.material_variant), which must cross to the worker too, and an uploaded .gltf with side
-// files.
+// files; issue 22's materials: a glTF material whose extras.lgh asks for a classic model and bump
+// mapping, textured by a DDS file (MSFT_texture_dds), with and without
+// settings.texture_compression.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -120,6 +123,112 @@ TEST_F(SceneWorkerTest, UploadedGltfWithSideFilesRendersTheSame) {
                                        requestPart(plain), filePart("draco/2CylinderEngine.gltf"),
                                        filePart("draco/2CylinderEngine.bin")});
   });
+}
+
+// An 8 x 8 DXT1 DDS file (legacy header, one level): rows of red to green, so the height map
+// (its red channel) slopes and bump mapping shows.
+std::string gradientDds() {
+  std::vector<std::uint8_t> file(128, 0);
+  auto put32 = [&file](std::size_t offset, std::uint32_t value) {
+    for (std::size_t i = 0; i < 4; ++i) {
+      file[offset + i] = static_cast<std::uint8_t>(value >> (8 * i));
+    }
+  };
+  file[0] = 'D';
+  file[1] = 'D';
+  file[2] = 'S';
+  file[3] = ' ';
+  put32(4, 124);
+  put32(8, 0x1 | 0x2 | 0x4 | 0x1000 | 0x80000);  // caps, height, width, pixel format, linear size
+  put32(12, 8);                                  // height
+  put32(16, 8);                                  // width
+  put32(20, 32);                                 // bytes of level 0
+  put32(28, 1);                                  // mip levels
+  put32(76, 32);                                 // pixel format size
+  put32(80, 0x4);                                // FourCC
+  file[84] = 'D';
+  file[85] = 'X';
+  file[86] = 'T';
+  file[87] = '1';
+  put32(108, 0x1000);  // a texture
+  for (int block = 0; block < 4; ++block) {
+    // colour 0 red, colour 1 green (colour 0 > colour 1: four colours); rows 0, 2, 3, 1.
+    const std::uint8_t bytes[8] = {0x00, 0xF8, 0xE0, 0x07, 0x00, 0xAA, 0xFF, 0x55};
+    file.insert(file.end(), bytes, bytes + 8);
+  }
+  return {file.begin(), file.end()};
+}
+
+// A quad whose material is the lecture's Blinn-Phong with bump mapping (glTF extras.lgh), its
+// base colour and height map the DDS file.
+std::vector<httplib::MultipartFormData> lectureQuadFiles() {
+  const std::vector<float> positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  const std::vector<float> normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  const std::vector<float> uvs = {0, 1, 1, 1, 1, 0, 0, 0};
+  const std::vector<std::uint16_t> indices = {0, 1, 2, 0, 2, 3};
+  std::string bin;
+  auto append = [&bin](const void* data, std::size_t size) {
+    bin.append(static_cast<const char*>(data), size);
+  };
+  append(positions.data(), 48);
+  append(normals.data(), 48);
+  append(uvs.data(), 32);
+  append(indices.data(), 12);
+  const json extras = {{"lgh",
+                        {{"model", "blinn-phong"},
+                         {"shininess", 24},
+                         {"surface", "bump"},
+                         {"height_texture", {{"texture", 0}}},
+                         {"height_scale", 0.05}}}};
+  const json gltf = {
+      {"asset", {{"version", "2.0"}}},
+      {"extensionsUsed", {"MSFT_texture_dds"}},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes",
+       {{{"primitives",
+          {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}},
+            {"indices", 3},
+            {"material", 0}}}}}}},
+      {"materials",
+       {{{"name", "lecture"},
+         {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+         {"extras", extras}}}},
+      {"textures", {{{"extensions", {{"MSFT_texture_dds", {{"source", 0}}}}}}}},
+      {"images", {{{"uri", "gradient.dds"}}}},
+      {"accessors",
+       {{{"bufferView", 0},
+         {"componentType", 5126},
+         {"count", 4},
+         {"type", "VEC3"},
+         {"min", {0, 0, 0}},
+         {"max", {1, 1, 0}}},
+        {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
+        {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+        {{"bufferView", 3}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
+        {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 48}},
+        {{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 32}},
+        {{"buffer", 0}, {"byteOffset", 128}, {"byteLength", 12}}}},
+      {"buffers", {{{"uri", "quad.bin"}, {"byteLength", bin.size()}}}}};
+  return {{"file", gltf.dump(), "quad.gltf", "model/gltf+json"},
+          {"file", bin, "quad.bin", "application/octet-stream"},
+          {"file", gradientDds(), "gradient.dds", "image/vnd-ms.dds"}};
+}
+
+TEST_F(SceneWorkerTest, LectureMaterialWithDdsTextureRendersTheSame) {
+  for (const char* compression : {"none", "bc"}) {
+    json plain = request(json::object());
+    plain.erase("scene");
+    plain["settings"]["texture_compression"] = compression;
+    expectSame(std::string("classic model, bump, DDS; texture_compression ") + compression,
+               [&](httplib::Client& http) {
+                 httplib::MultipartFormDataItems items{requestPart(plain)};
+                 for (auto& file : lectureQuadFiles()) items.push_back(std::move(file));
+                 return http.Post("/v1/render", items);
+               });
+  }
 }
 
 }  // namespace

@@ -124,6 +124,23 @@ TEST(LghRender, ABadRequestFailsWithOneLineNamingTheField) {
   EXPECT_NE(run.err.find("/output/width"), std::string::npos) << run.err;
 }
 
+// The lecture's materials from the CLI: the same request field as the daemon's.
+TEST(LghRender, MaterialParametersFromTheRequestFile) {
+  const fs::path request = outputFile("materials.json");
+  std::ofstream(request) << R"({"output": {"width": 40, "height": 30},
+    "materials": [{"match": {"name": "red"}, "parameters": {"model": "oren-nayar", "sigma": 0.6}},
+                  {"match": {"all": true}, "parameters": {"sampling": {"filter": "bicubic"}}}]})";
+  const fs::path png = outputFile("materials.png");
+  const ToolRun run = runTool("lgh-render", request.string() + " -q -o " + png.string());
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(decodeFile(png).width, 40);
+  std::ofstream(request) << R"({"materials": [{"match": {"name": "red"},
+    "parameters": {"model": "phong", "shininess": -2}}]})";
+  const ToolRun bad = runTool("lgh-render", request.string() + " -o " + png.string());
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_NE(bad.err.find("/materials/0/parameters/shininess"), std::string::npos) << bad.err;
+}
+
 TEST(LghRender, MalformedJsonAndMissingFilesNameTheFile) {
   const fs::path malformed = outputFile("malformed.json");
   std::ofstream(malformed) << R"({"output": )";

@@ -3,6 +3,7 @@
 //    other VPLs); both tracing paths (ray query, pipeline) give the very same VPLs;
 //  - energy: in a closed room every path hits, so bounce b's VPLs carry exactly the light's power
 //    times albedo^b (/ 2 pi), and the room gathers more light with more bounces, converging;
+//  - the light paths read the frame's materials (a request's `materials` colour the bounces);
 //  - emissive triangles are area lights: their emission VPLs carry pi L A; directional and spot
 //    lights deposit their power;
 //  - the light paths' timing rows and decisions; the request's conflicts; no Vulkan: 503.
@@ -191,7 +192,7 @@ class GlobalIllumination : public ::testing::Test {
   static std::unique_ptr<lgh::CachedScene> cached(lgh::Scene scene) {
     auto entry = std::make_unique<lgh::CachedScene>();
     entry->scene = std::move(scene);
-    entry->gpu = std::make_unique<lgh::GpuScene>(entry->scene, 1.0F);
+    entry->gpu = std::make_unique<lgh::GpuScene>(entry->scene, lgh::GpuSceneOptions{});
     return entry;
   }
 
@@ -331,6 +332,41 @@ TEST_F(GlobalIllumination, AClosedWhiteRoomConservesEnergyAndConverges) {
     previous = mean;
     previousGain = gain;
   }
+}
+
+// The light paths read the frame's materials (docs/MATERIALS.md): a request's `materials` that
+// make the room's metal Phong clay colour the bounce's VPLs channel by channel, exactly as the
+// energy check above predicts (a classic model's `diffuse` is all diffuse, whatever the metallic
+// factor); the next request without them is back at the scene's own metal, which reflects no
+// diffuse light.
+TEST_F(GlobalIllumination, LightPathsReadTheRequestsMaterials) {
+  constexpr float kIntensity = 2.0F;
+  lgh::Scene metalRoom = closedRoom(0.6F);
+  metalRoom.materials[0].metallicFactor = 1.0F;
+  auto room = cached(std::move(metalRoom));
+  const auto frameWith = [&](const json& materials) {
+    json body = {{"output", {{"width", 24}, {"height", 18}}},
+                 {"lights",
+                  {{{"type", "point"}, {"position", {0.3, 1.4, -0.2}}, {"intensity", kIntensity}}}},
+                 {"use_default_lights", false},
+                 {"settings",
+                  {{"shadows", "off"},
+                   {"ambient", 0},
+                   {"gi", {{"enabled", true}, {"bounces", 1}, {"vpl_count", 2000}}}}}};
+    if (!materials.is_null()) body["materials"] = materials;
+    return render(lgh::parseRenderRequest(body), *room);
+  };
+  const double power = 4.0 * glm::pi<double>() * kIntensity / (2.0 * glm::pi<double>());
+  const glm::dvec3 diffuse(0.3, 0.45, 0.15);
+  const Frame clay = frameWith(json::array(
+      {{{"match", {{"index", 0}}},
+        {"parameters", {{"model", "phong"}, {"diffuse", {diffuse.r, diffuse.g, diffuse.b}}}}}}));
+  const glm::dvec3 sum = slotSum(clay, 0);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(sum[c] / (power * diffuse[c]), 1.0, 1e-4) << "channel " << c;
+  }
+  const glm::dvec3 metal = slotSum(frameWith(json()), 0);
+  EXPECT_EQ(metal, glm::dvec3(0.0)) << "the cached scene keeps its own (metal) material";
 }
 
 // The demo's ceiling panel (0.5 x 0.5, radiance (1, 0.95, 0.85), one-sided) is an area light: the

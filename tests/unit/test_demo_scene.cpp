@@ -1,7 +1,12 @@
 // The built-in demo scene: geometry, frames, materials and lights are what demo_scene.hpp says.
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "scene/demo_scene.hpp"
@@ -134,14 +139,19 @@ TEST_F(DemoScene, MaterialsAndCheckerTexture) {
       metallicSphere = true;
     }
     if (m.emissiveFactor.x > 0.5F) emissivePanel = true;
-    if (m.metallicFactor == 0.0F) {
+    // The room's dielectrics (the model row below has its own parameters).
+    if (m.metallicFactor == 0.0F && m.name.rfind("model_", 0) != 0) {
       EXPECT_NEAR(m.roughnessFactor, 0.8F, 1e-6F) << m.name;
     }
   }
   EXPECT_TRUE(metallicSphere);
   EXPECT_TRUE(emissivePanel);
   ASSERT_TRUE(materials[0].baseColorTexture.valid());
-  ASSERT_EQ(scene().images.size(), 1U);
+  // The checker, a brick height map, its normal map, a light map and the bricks' colour, each a
+  // texture by index.
+  ASSERT_EQ(scene().images.size(), 5U);
+  ASSERT_EQ(scene().textures.size(), 5U);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(scene().textures[static_cast<std::size_t>(i)].image, i);
   const lgh::Image8& checker = scene().images[0];
   EXPECT_EQ(checker.channels, 4);
   ASSERT_EQ(checker.pixels.size(), static_cast<std::size_t>(checker.width) * checker.height * 4);
@@ -152,6 +162,40 @@ TEST_F(DemoScene, MaterialsAndCheckerTexture) {
   };
   EXPECT_NE(grey(tile / 2, tile / 2), grey(tile + tile / 2, tile / 2));
   EXPECT_EQ(grey(tile / 2, tile / 2), grey(2 * tile + tile / 2, tile / 2));
+}
+
+// The lecture's models side by side: six spheres on the floor in front, one model each.
+TEST_F(DemoScene, RowOfIlluminationModels) {
+  const std::vector<std::pair<std::string, lgh::MaterialModel>> expected = {
+      {"ggx_sphere", lgh::MaterialModel::MetallicRoughness},
+      {"phong_sphere", lgh::MaterialModel::Phong},
+      {"blinn_phong_sphere", lgh::MaterialModel::BlinnPhong},
+      {"lambert_sphere", lgh::MaterialModel::OrenNayar},
+      {"oren_nayar_sphere", lgh::MaterialModel::OrenNayar},
+      {"cook_torrance_sphere", lgh::MaterialModel::CookTorrance}};
+  float previousX = -2.0F;
+  for (const auto& [name, model] : expected) {
+    SCOPED_TRACE(name);
+    const auto mesh = std::find_if(scene().meshes.begin(), scene().meshes.end(),
+                                   [&](const lgh::Mesh& m) { return m.name == name; });
+    ASSERT_NE(mesh, scene().meshes.end());
+    const int material = mesh->primitives.at(0).material;
+    EXPECT_EQ(scene().materials.at(static_cast<std::size_t>(material)).model, model);
+    const auto meshIndex = static_cast<int>(mesh - scene().meshes.begin());
+    const auto instance =
+        std::find_if(scene().instances.begin(), scene().instances.end(),
+                     [&](const lgh::MeshInstance& i) { return i.mesh == meshIndex; });
+    ASSERT_NE(instance, scene().instances.end());
+    const float x = instance->world[3].x;
+    EXPECT_GT(x, previousX);                         // left to right
+    EXPECT_NEAR(instance->world[3].y, 0.1F, 1e-6F);  // resting on the floor
+    previousX = x;
+  }
+  const auto lambert =
+      std::find_if(scene().materials.begin(), scene().materials.end(),
+                   [](const lgh::Material& m) { return m.name == "model_lambert"; });
+  ASSERT_NE(lambert, scene().materials.end());
+  EXPECT_EQ(lambert->classic.sigma, 0.0F);
 }
 
 TEST_F(DemoScene, HasPointSpotAndDirectionalLights) {

@@ -996,6 +996,16 @@ TEST(EnumNames, AgreeWithTheSchemas) {
   EXPECT_EQ(schemaEnum("render-settings.schema.json", "method"), tableNames<LghBuildMethod>());
   EXPECT_EQ(schemaEnum("render-settings.schema.json", "interleave"), tableNames<InterleaveMode>());
   EXPECT_EQ(schemaEnum("render-settings.schema.json", "path"), tableNames<LightingPath>());
+  EXPECT_EQ(schemaEnum("render-settings.schema.json", "texture_compression"),
+            tableNames<TextureCompression>());
+  EXPECT_EQ(schemaEnum("material-parameters.schema.json", "model"), tableNames<MaterialModel>());
+  EXPECT_EQ(schemaEnum("material-parameters.schema.json", "shading"), tableNames<ShadingMode>());
+  EXPECT_EQ(schemaEnum("material-parameters.schema.json", "surface"), tableNames<SurfaceDetail>());
+  EXPECT_EQ(schemaEnum("material-parameters.schema.json", "alpha_mode"), tableNames<AlphaMode>());
+  EXPECT_EQ(schemaEnum("material-parameters.schema.json", "wrap_s"), tableNames<WrapMode>());
+  EXPECT_EQ(schemaEnum("material-parameters.schema.json", "wrap_t"), tableNames<WrapMode>());
+  EXPECT_EQ(schemaEnum("material-parameters.schema.json", "filter"), tableNames<TextureFilter>());
+  EXPECT_EQ(schemaEnum("material-parameters.schema.json", "mipmaps"), tableNames<MipmapMode>());
   EXPECT_EQ(schemaEnum("scene.schema.json", "builtin"), tableNames<BuiltinScene>());
 }
 

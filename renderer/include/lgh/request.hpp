@@ -13,6 +13,7 @@
 
 #include "lgh/enum_names.hpp"
 #include "lgh/error.hpp"
+#include "lgh/material_settings.hpp"
 
 namespace lgh {
 
@@ -40,6 +41,11 @@ struct LightDesc {
   float innerConeAngle = 0.0F;
   float outerConeAngle = 0.785398F;
   float spotExponent = 0.0F;  // the lecture's spot effect cos^exponent, added to the cone falloff
+  // The lecture's per-light colours (linear RGB, times intensity): ambient is added unshadowed to
+  // every surface the light reaches; diffuse and specular colour the two lobes (unset: color).
+  std::array<float, 3> ambient{0, 0, 0};
+  std::optional<std::array<float, 3>> diffuse;
+  std::optional<std::array<float, 3>> specular;
   // Soft shadows: the size of the light as its shadow rays see it (0: hard shadows). Point and
   // spot lights: radius in world units; directional lights: angular radius in radians.
   float radius = 0.0F;
@@ -251,8 +257,21 @@ struct PrimitiveSettings {
   float lineWidth = 1.5F;  // pixels
 };
 
+// settings.texture_compression: textures kept as uploaded, or block-compressed on upload (BC1/BC3
+// colour, BC4 single channel, BC5 normal maps). Precompressed DDS textures stay compressed either
+// way.
+enum class TextureCompression { None, Bc };
+template <>
+struct EnumNames<TextureCompression> {
+  static constexpr std::array<EnumName<TextureCompression>, 2> names{{
+      {"none", TextureCompression::None},
+      {"bc", TextureCompression::Bc},
+  }};
+};
+
 struct RenderSettings {
   float ambient = 0.03F;  // constant ambient term (linear RGB intensity, grey)
+  TextureCompression textureCompression = TextureCompression::None;
   // Render assets whose required glTF extensions this renderer lacks, with a warning (else 422).
   bool ignoreUnsupportedExtensions = false;
   PrimitiveSettings primitives;
@@ -266,6 +285,8 @@ struct RenderRequest {
   SceneOptions sceneOptions;
   std::vector<LightDesc> lights;      // extra lights beside the asset's
   bool useDemoLightsWhenNone = true;  // an asset with no light gets a default key light
+  // Material parameters applied over the scene's materials for this frame (docs/MATERIALS.md).
+  std::vector<MaterialOverride> materials;
   CameraDesc camera;
   OutputSettings output;
   RenderSettings settings;

@@ -86,11 +86,12 @@ glm::vec3 meanLinearColor(const Image8& image) {
   return glm::vec3(sum / static_cast<double>(pixels));
 }
 
-AlbedoArray::AlbedoArray(const Scene& scene, int maxLayers, std::vector<std::string>& warnings)
+AlbedoArray::AlbedoArray(const Scene& scene, const std::vector<Material>& materials, int maxLayers,
+                         std::vector<std::string>& warnings)
     : layerOfImage_(scene.images.size(), -1) {
   std::vector<int> images;
   int skipped = 0;
-  for (const Material& material : scene.materials) {
+  for (const Material& material : materials) {
     const int image = material.baseColorTexture.image;
     if (image < 0 || static_cast<std::size_t>(image) >= scene.images.size()) continue;
     if (layerOfImage_[static_cast<std::size_t>(image)] >= 0) continue;

@@ -25,9 +25,10 @@ glm::vec3 meanLinearColor(const Image8& image);
 
 class AlbedoArray {
  public:
-  // Layers for the base-colour images of `scene`'s materials, at most `maxLayers` (the rest get
-  // none: their materials use the factor alone, with a warning in `warnings`).
-  AlbedoArray(const Scene& scene, int maxLayers, std::vector<std::string>& warnings);
+  // Layers for the base-colour images (of `scene`) of `materials`, at most `maxLayers` (the rest
+  // get none: their materials use the factor alone, with a warning in `warnings`).
+  AlbedoArray(const Scene& scene, const std::vector<Material>& materials, int maxLayers,
+              std::vector<std::string>& warnings);
 
   // The layer of scene image `image`, -1 when it has none.
   int layerOf(int image) const;

@@ -2,7 +2,8 @@
 // CPU half of glsl/include/gi_material.glsl (GiMaterial, std430). The two functions here and there
 // are the one place that follows the material model (gbuffer.frag, scene/scene.hpp's Material):
 // base colour factor, base-colour texture (as a layer of the downsampled albedo array), metallic
-// and roughness factors, and emission (factor x the emissive texture's mean colour).
+// (0 for the lecture's classic models, whose `diffuse` is the base colour) and roughness factors,
+// and emission (factor x the emissive texture's mean colour).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -26,5 +27,9 @@ GiMaterialGpu packGiMaterial(const Material& material, int baseColorLayer,
 
 // The radiance a surface of this material emits (what packGiMaterial stores as emission).
 glm::vec3 emittedRadiance(const Material& material, const glm::vec3& emissiveTextureMean);
+
+// Whether the light paths read the two materials alike: the fields above, nothing else (a
+// request's `materials` that change only, say, the shading mode keep the hit geometry).
+bool sameForLightPaths(const Material& a, const Material& b);
 
 }  // namespace lgh

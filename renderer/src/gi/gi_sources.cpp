@@ -1,5 +1,6 @@
 #include "gi/gi_sources.hpp"
 
+#include <array>
 #include <cmath>
 
 #include <glm/gtc/constants.hpp>
@@ -12,8 +13,11 @@ double luminance(const glm::vec3& rgb) { return 0.2126 * rgb.r + 0.7152 * rgb.g 
 }  // namespace
 
 glm::vec3 lightPower(const LightDesc& light, const Bounds& sceneBounds) {
-  const glm::vec3 emitted = glm::max(
-      glm::vec3(light.color[0], light.color[1], light.color[2]) * light.intensity, glm::vec3(0.0F));
+  // Light paths bounce diffusely: they carry the light's diffuse colour (its colour unless set),
+  // as the direct lighting's diffuse lobe does; its ambient and specular colours stay direct.
+  const std::array<float, 3> color = light.diffuse.value_or(light.color);
+  const glm::vec3 emitted =
+      glm::max(glm::vec3(color[0], color[1], color[2]) * light.intensity, glm::vec3(0.0F));
   switch (light.type) {
     case LightType::Point:
       return 4.0F * glm::pi<float>() * emitted;

@@ -37,7 +37,7 @@ struct GiSourceTable {
 
 // The emitted power of an analytic light: point 4 pi I, spot 2 pi (1 - cos outer) I (the cone it
 // shines into), directional E times the projected area of the scene's bounding box (what its
-// paths start on); I and E are colour x intensity.
+// paths start on); I and E are colour x intensity (the diffuse colour where the light sets one).
 glm::vec3 lightPower(const LightDesc& light, const Bounds& sceneBounds);
 
 // `lights`: the frame's lights in the order of its light buffer.

@@ -22,16 +22,16 @@ float luminance(const glm::vec3& rgb) {
   return glm::dot(rgb, glm::vec3(0.2126F, 0.7152F, 0.0722F));
 }
 
-const Material& materialOf(const Scene& scene, int index) {
+const Material& materialOf(const std::vector<Material>& materials, int index) {
   static const Material kDefault;
-  if (index < 0 || static_cast<std::size_t>(index) >= scene.materials.size()) return kDefault;
-  return scene.materials[static_cast<std::size_t>(index)];
+  if (index < 0 || static_cast<std::size_t>(index) >= materials.size()) return kDefault;
+  return materials[static_cast<std::size_t>(index)];
 }
 
 // The linear mean colour of each image some material emits with.
-std::map<int, glm::vec3> emissiveMeans(const Scene& scene) {
+std::map<int, glm::vec3> emissiveMeans(const Scene& scene, const std::vector<Material>& materials) {
   std::map<int, glm::vec3> means;
-  for (const Material& material : scene.materials) {
+  for (const Material& material : materials) {
     const int image = material.emissiveTexture.image;
     if (image < 0 || static_cast<std::size_t>(image) >= scene.images.size()) continue;
     if (!means.contains(image)) {
@@ -63,15 +63,15 @@ std::vector<HitVertexGpu> packVertices(const Scene& scene, const vk::PackedGeome
   return vertices;
 }
 
-void addEmissiveTriangles(const Scene& scene, const vk::PackedGeometry& packed,
-                          const std::map<int, glm::vec3>& means, const MeshInstance& instance,
-                          std::vector<EmissiveTriangle>& out) {
+void addEmissiveTriangles(const Scene& scene, const std::vector<Material>& materials,
+                          const vk::PackedGeometry& packed, const std::map<int, glm::vec3>& means,
+                          const MeshInstance& instance, std::vector<EmissiveTriangle>& out) {
   const auto mesh = static_cast<std::size_t>(instance.mesh);
   // glTF: a negative determinant flips which side of a triangle is its front.
   const float side = glm::determinant(glm::mat3(instance.world)) < 0.0F ? -1.0F : 1.0F;
   for (const vk::PackedPrimitive& placed : packed.meshes[mesh].primitives) {
     const Primitive& primitive = scene.meshes[mesh].primitives[placed.sourcePrimitive];
-    const Material& material = materialOf(scene, primitive.material);
+    const Material& material = materialOf(materials, primitive.material);
     const glm::vec3 radiance = emittedRadiance(material, emissiveMeanOf(means, material));
     if (!(luminance(radiance) > 0.0F)) continue;
     for (std::uint32_t t = 0; t < placed.triangleCount; ++t) {
@@ -96,9 +96,10 @@ void addEmissiveTriangles(const Scene& scene, const vk::PackedGeometry& packed,
 
 }  // namespace
 
-HitGeometry::HitGeometry(const Scene& scene)
-    : albedo_(
-          scene,
+HitGeometry::HitGeometry(const Scene& scene, const std::vector<Material>& materials)
+    : materialsBuiltWith_(materials),
+      albedo_(
+          scene, materials,
           [] {
             GLint layers = 0;
             glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &layers);
@@ -111,13 +112,12 @@ HitGeometry::HitGeometry(const Scene& scene)
 
   std::vector<std::uint32_t> firstGeometryOfMesh(packed.meshes.size(), 0);
   std::vector<HitGeometryGpu> geometries;
-  const auto defaultMaterial = static_cast<std::uint32_t>(scene.materials.size());
+  const auto defaultMaterial = static_cast<std::uint32_t>(materials.size());
   for (std::size_t m = 0; m < packed.meshes.size(); ++m) {
     firstGeometryOfMesh[m] = static_cast<std::uint32_t>(geometries.size());
     for (const vk::PackedPrimitive& placed : packed.meshes[m].primitives) {
       const int material = scene.meshes[m].primitives[placed.sourcePrimitive].material;
-      const bool known =
-          material >= 0 && static_cast<std::size_t>(material) < scene.materials.size();
+      const bool known = material >= 0 && static_cast<std::size_t>(material) < materials.size();
       geometries.push_back({placed.firstVertex, placed.firstIndex,
                             known ? static_cast<std::uint32_t>(material) : defaultMaterial,
                             placed.triangleCount});
@@ -125,7 +125,7 @@ HitGeometry::HitGeometry(const Scene& scene)
   }
 
   std::vector<HitInstanceGpu> instances(scene.instances.size());
-  const std::map<int, glm::vec3> means = emissiveMeans(scene);
+  const std::map<int, glm::vec3> means = emissiveMeans(scene, materials);
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
     const MeshInstance& instance = scene.instances[i];
     instances[i].world = instance.world;
@@ -137,22 +137,23 @@ HitGeometry::HitGeometry(const Scene& scene)
     instances[i].geometries =
         glm::uvec4(firstGeometryOfMesh[mesh],
                    static_cast<std::uint32_t>(packed.meshes[mesh].primitives.size()), 0U, 0U);
-    addEmissiveTriangles(scene, packed, means, instance, emissive_);
+    addEmissiveTriangles(scene, materials, packed, means, instance, emissive_);
   }
 
-  std::vector<GiMaterialGpu> materials;
-  materials.reserve(scene.materials.size() + 1);
-  for (const Material& material : scene.materials) {
-    materials.push_back(packGiMaterial(material, albedo_.layerOf(material.baseColorTexture.image),
-                                       emissiveMeanOf(means, material)));
+  std::vector<GiMaterialGpu> packedMaterials;
+  packedMaterials.reserve(materials.size() + 1);
+  for (const Material& material : materials) {
+    packedMaterials.push_back(packGiMaterial(material,
+                                             albedo_.layerOf(material.baseColorTexture.image),
+                                             emissiveMeanOf(means, material)));
   }
-  materials.push_back(packGiMaterial(Material{}, -1, glm::vec3(1.0F)));
+  packedMaterials.push_back(packGiMaterial(Material{}, -1, glm::vec3(1.0F)));
 
   upload(vertices_.id(), vertices.data(), vertices.size() * sizeof(HitVertexGpu));
   upload(indices_.id(), packed.indices.data(), packed.indices.size() * sizeof(std::uint32_t));
   upload(geometries_.id(), geometries.data(), geometries.size() * sizeof(HitGeometryGpu));
   upload(instances_.id(), instances.data(), instances.size() * sizeof(HitInstanceGpu));
-  upload(materials_.id(), materials.data(), materials.size() * sizeof(GiMaterialGpu));
+  upload(materials_.id(), packedMaterials.data(), packedMaterials.size() * sizeof(GiMaterialGpu));
   gpuBytes_ += albedo_.gpuBytes();
   spdlog::debug("gi: hit geometry of '{}': {} triangles, {} emissive, {:.1f} MB", scene.name,
                 triangles_, emissive_.size(), static_cast<double>(gpuBytes_) / 1e6);
@@ -166,8 +167,20 @@ void HitGeometry::upload(GLuint buffer, const void* data, std::size_t bytes) {
   gpuBytes_ += static_cast<std::size_t>(size);
 }
 
-const HitGeometry& HitGeometry::of(const CachedScene& scene) {
-  if (!scene.hitGeometry) scene.hitGeometry = std::make_unique<HitGeometry>(scene.scene);
+bool HitGeometry::builtWith(const std::vector<Material>& materials) const {
+  return std::equal(materials.begin(), materials.end(), materialsBuiltWith_.begin(),
+                    materialsBuiltWith_.end(), sameForLightPaths);
+}
+
+const HitGeometry& HitGeometry::of(const CachedScene& scene,
+                                   const std::vector<Material>& materials) {
+  const auto* built = static_cast<const HitGeometry*>(scene.hitGeometry.get());
+  if (built == nullptr || !built->builtWith(materials)) {
+    if (built != nullptr) {
+      spdlog::debug("gi: the frame's materials differ from the hit geometry's: building it again");
+    }
+    scene.hitGeometry = std::make_unique<HitGeometry>(scene.scene, materials);
+  }
   return static_cast<const HitGeometry&>(*scene.hitGeometry);
 }
 

@@ -4,7 +4,10 @@
 // them (vk::packGeometry), so a hit's (instance, geometry, primitive) names its triangle; the
 // instances' transforms; the materials (gi_material.hpp) with their base-colour textures in an
 // albedo array; and, on the CPU, the emissive triangles that light paths start from. Built once
-// per cached scene (CachedScene::hitGeometry) by the first frame with GI.
+// per cached scene (CachedScene::hitGeometry) by the first frame with GI, from the frame's
+// materials (MaterialTable: the scene's, extras.lgh included, with the request's `materials`
+// applied); built again when a frame's materials differ in what light paths read
+// (sameForLightPaths), so that a request's overrides colour the indirect light too.
 #pragma once
 
 #include <cstddef>
@@ -56,10 +59,11 @@ struct EmissiveTriangle {
 
 class HitGeometry final : public SceneAttachment {
  public:
-  explicit HitGeometry(const Scene& scene);
+  HitGeometry(const Scene& scene, const std::vector<Material>& materials);
 
-  // The cached scene's hit geometry, built on the first call.
-  static const HitGeometry& of(const CachedScene& scene);
+  // The cached scene's hit geometry for the frame's `materials` (one per scene material), built
+  // on the first call and again when `materials` differ from those it was built with.
+  static const HitGeometry& of(const CachedScene& scene, const std::vector<Material>& materials);
 
   // Binds the buffers and the albedo array at their GI slots (glsl/include/slots.glsl).
   void bind() const;
@@ -73,7 +77,9 @@ class HitGeometry final : public SceneAttachment {
 
  private:
   void upload(GLuint buffer, const void* data, std::size_t bytes);
+  bool builtWith(const std::vector<Material>& materials) const;
 
+  std::vector<Material> materialsBuiltWith_;
   std::vector<std::string> warnings_;
   AlbedoArray albedo_;
   gl::Buffer vertices_;

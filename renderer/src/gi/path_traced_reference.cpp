@@ -61,8 +61,8 @@ FloatImage PathTracedReference::render(const PathTracingSettings& settings,
   paths_.reserve(static_cast<GLsizeiptr>(paths) * kPathBytes);
   radiance_.reserve(static_cast<GLsizeiptr>(pixels) * 16);
   glClearNamedBufferData(radiance_.id(), GL_R32F, GL_RED, GL_FLOAT, nullptr);
-  const GiSourceTable& table =
-      sources_.update(inputs.lights, HitGeometry::of(inputs.scene), inputs.scene.scene);
+  const GiSourceTable& table = sources_.update(
+      inputs.lights, HitGeometry::of(inputs.scene, inputs.materials), inputs.scene.scene);
   for (std::uint32_t i = 0; i < iterations && !table.sources.empty(); ++i) {
     iterate(settings, inputs, tracing, session, paths, samples, iterationSeed(settings.seed, i));
   }
@@ -99,7 +99,7 @@ void PathTracedReference::iterate(const PathTracingSettings& settings,
   const float offset = giSurfaceOffset(scene);
   const HitBatchTransport::GlBuffers batch = session.transport->prepare(paths);
   const auto bind = [&] {
-    HitGeometry::of(inputs.scene).bind();
+    HitGeometry::of(inputs.scene, inputs.materials).bind();
     sources_.bind(inputs.lightBuffer);
     bindGBuffer(frame.gbuffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_GI_PATHS, paths_.id());

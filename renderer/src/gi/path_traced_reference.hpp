@@ -38,7 +38,8 @@ struct PathTracingInputs {
   const std::vector<LightDesc>& lights;  // the frame's lights, in the order of lightBuffer
   GLuint lightBuffer = 0;
   const CameraMatrices& camera;
-  const FrameTargets& frame;  // its G-buffer: the first vertices
+  const FrameTargets& frame;               // its G-buffer: the first vertices
+  const std::vector<Material>& materials;  // the frame's (MaterialTable), one per scene material
 };
 
 class PathTracedReference {

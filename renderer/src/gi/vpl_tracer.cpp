@@ -76,7 +76,7 @@ VplLayout VplTracer::generate(const VplTracingInputs& inputs, const CachedScene&
 
   const GiTracing::Session session = tracing.begin(cached, inputs.tracing, "/settings/gi/enabled");
   asBuildMs_ = session.asBuildMs;
-  const HitGeometry& geometry = HitGeometry::of(cached);
+  const HitGeometry& geometry = HitGeometry::of(cached, inputs.materials);
   for (const std::string& warning : geometry.warnings()) report.warn(warning);
   const GiSourceTable& table = sources_.update(inputs.lights, geometry, scene);
   layout.emissionSlot = table.hasTriangles;

@@ -36,6 +36,7 @@ struct VplTracingInputs {
   const std::vector<LightDesc>& lights;  // the frame's lights, in the order of lightBuffer
   GLuint lightBuffer = 0;                // their GpuLight SSBO
   ShadowTracing tracing = ShadowTracing::Auto;
+  const std::vector<Material>& materials;  // the frame's (MaterialTable), one per scene material
 };
 
 // How the slots were filled.

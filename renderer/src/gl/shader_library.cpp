@@ -136,6 +136,10 @@ Shader compileStage(const ShaderStage& stage, const std::string& defines) {
 }  // namespace
 
 Program buildProgram(std::initializer_list<ShaderStage> stages, const std::string& defines) {
+  return buildProgram(std::vector<ShaderStage>(stages), defines);
+}
+
+Program buildProgram(const std::vector<ShaderStage>& stages, const std::string& defines) {
   Program program;
   std::vector<Shader> shaders;
   std::string names;

@@ -7,6 +7,7 @@
 #include <initializer_list>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "gl/gl_objects.hpp"
 
@@ -24,6 +25,8 @@ std::string preprocessShader(const std::string& file, const std::string& defines
 // Builds a program; a compile or link failure throws lgh::Error(Internal) carrying the file name
 // and the driver's info log.
 Program buildProgram(std::initializer_list<ShaderStage> stages, const std::string& defines = {});
+// The same, for stage lists assembled at run time (program variants).
+Program buildProgram(const std::vector<ShaderStage>& stages, const std::string& defines = {});
 
 // Convenience: a compute program from one file.
 Program buildComputeProgram(const std::string& file, const std::string& defines = {});

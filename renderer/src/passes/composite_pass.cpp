@@ -19,10 +19,20 @@ int toneMapCode(ToneMap toneMap) {
   return 0;
 }
 
-gl::Program buildComposite(bool display) {
+}  // namespace
+
+void setDisplayUniforms(GLuint program, const OutputSettings& output, int height) {
+  glProgramUniform1i(program, glGetUniformLocation(program, "uHeight"), height);
+  glProgramUniform1i(program, glGetUniformLocation(program, "uToneMap"),
+                     toneMapCode(output.toneMap));
+  glProgramUniform1f(program, glGetUniformLocation(program, "uExposure"), output.exposure);
+}
+
+gl::Program buildDisplayProgram(const char* fragmentShader, const std::string& defines,
+                                bool display) {
   gl::Program program = gl::buildProgram(
-      {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "composite.frag"}},
-      display ? "#define LGH_DISPLAY_OUTPUT 1\n" : "");
+      {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragmentShader}},
+      defines + (display ? "#define LGH_DISPLAY_OUTPUT 1\n" : ""));
   if (display) {
     const auto& thresholds = image_io::detail::srgbThresholds();
     glProgramUniform1fv(program.id(), glGetUniformLocation(program.id(), "uSrgbThresholds"), 255,
@@ -30,8 +40,6 @@ gl::Program buildComposite(bool display) {
   }
   return program;
 }
-
-}  // namespace
 
 OutputPixels outputPixelsFor(const OutputSettings& output) {
   switch (output.format) {
@@ -45,29 +53,42 @@ OutputPixels outputPixelsFor(const OutputSettings& output) {
   return OutputPixels::Display8;
 }
 
-const gl::Program& CompositePass::program(OutputPixels pixels) {
-  std::optional<gl::Program>& slot = pixels == OutputPixels::Display8 ? display_ : linear_;
-  if (!slot) slot.emplace(buildComposite(pixels == OutputPixels::Display8));
+const gl::Program& CompositePass::program(OutputPixels pixels, bool toScene) {
+  if (toScene) {
+    if (!scene_) {
+      scene_.emplace(buildDisplayProgram("composite.frag", "#define LGH_SCENE_TARGET 1\n", false));
+    }
+    return *scene_;
+  }
+  const bool display = pixels == OutputPixels::Display8;
+  std::optional<gl::Program>& slot = display ? display_ : linear_;
+  if (!slot) slot.emplace(buildDisplayProgram("composite.frag", "", display));
   return *slot;
 }
 
 void CompositePass::run(const OutputSettings& output, OutputPixels pixels, bool hasIndirect,
                         GLuint shadowRatio, FrameTargets& targets) {
-  glBindFramebuffer(GL_FRAMEBUFFER, targets.output(pixels).framebuffer.id());
+  draw(output, pixels, false, hasIndirect, shadowRatio, targets);
+}
+
+void CompositePass::runToScene(const OutputSettings& output, bool hasIndirect, GLuint shadowRatio,
+                               FrameTargets& targets) {
+  draw(output, OutputPixels::LinearFloat, true, hasIndirect, shadowRatio, targets);
+}
+
+void CompositePass::draw(const OutputSettings& output, OutputPixels pixels, bool toScene,
+                         bool hasIndirect, GLuint shadowRatio, FrameTargets& targets) {
+  const OutputTarget& target = toScene ? targets.sceneLinear() : targets.output(pixels);
+  glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
   glViewport(0, 0, targets.width, targets.height);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
-  const GLuint program = this->program(pixels).id();
+  const GLuint program = this->program(pixels, toScene).id();
   glUseProgram(program);
   glProgramUniform1i(program, glGetUniformLocation(program, "uHasIndirect"), hasIndirect ? 1 : 0);
   glProgramUniform1i(program, glGetUniformLocation(program, "uHasShadowRatio"),
                      shadowRatio != 0 ? 1 : 0);
-  glProgramUniform1i(program, glGetUniformLocation(program, "uHeight"), targets.height);
-  if (pixels == OutputPixels::Display8) {
-    glProgramUniform1i(program, glGetUniformLocation(program, "uToneMap"),
-                       toneMapCode(output.toneMap));
-    glProgramUniform1f(program, glGetUniformLocation(program, "uExposure"), output.exposure);
-  }
+  setDisplayUniforms(program, output, targets.height);
   glBindTextureUnit(LGH_UNIT_COMPOSITE_RATIO, shadowRatio);
   const float alpha = output.transparentBackground ? 0.0F : 1.0F;
   const auto& bg = output.background;

@@ -2,12 +2,15 @@
 //   inputs:  FrameTargets::direct, FrameTargets::indirect (when LGH lighting ran) and its shadow
 //            ratio (when shadowed), G-buffer coverage, background colour or transparency
 //   outputs: FrameTargets::output(pixels), rows turned over: display codes (exposure, tone map,
-//            sRGB; RGBA8UI) for a PNG, linear light (RGBA16F / RGBA32F) for an EXR
+//            sRGB; RGBA8UI) for a PNG, linear light (RGBA16F / RGBA32F) for an EXR;
+//            or (runToScene, frames with blended surfaces) FrameTargets::scene, linear light with
+//            the rows as GL stores them, for the forward blend and then the display pass
 //   shaders: glsl/fullscreen.vert, glsl/composite.frag (+ include/display_transform.glsl)
 // packOutput() then copies the output into a pixel-pack buffer, asynchronously.
 #pragma once
 
 #include <optional>
+#include <string>
 
 #include "gl/gl_objects.hpp"
 #include "lgh/frame_pixels.hpp"
@@ -22,14 +25,28 @@ class CompositePass {
   // `shadowRatio`: the filtered LGH shadow ratio texture, 0 for unshadowed LGH lighting.
   void run(const OutputSettings& output, OutputPixels pixels, bool hasIndirect, GLuint shadowRatio,
            FrameTargets& targets);
+  // The same sum into FrameTargets::sceneLinear(): blending happens in linear light, before the
+  // display transform (passes/display_pass.hpp).
+  void runToScene(const OutputSettings& output, bool hasIndirect, GLuint shadowRatio,
+                  FrameTargets& targets);
 
  private:
-  const gl::Program& program(OutputPixels pixels);
+  void draw(const OutputSettings& output, OutputPixels pixels, bool toScene, bool hasIndirect,
+            GLuint shadowRatio, FrameTargets& targets);
+  const gl::Program& program(OutputPixels pixels, bool toScene);
 
   std::optional<gl::Program> display_;  // each compiled on first use
   std::optional<gl::Program> linear_;
+  std::optional<gl::Program> scene_;
   gl::VertexArray emptyVertexArray_;
 };
+
+// A fullscreen program of glsl/fullscreen.vert + `fragmentShader` with `defines`; `display` adds
+// LGH_DISPLAY_OUTPUT and uploads the sRGB thresholds of include/display_transform.glsl.
+gl::Program buildDisplayProgram(const char* fragmentShader, const std::string& defines,
+                                bool display);
+// uHeight, uToneMap and uExposure of a program that writes output(pixels) (unused ones ignored).
+void setDisplayUniforms(GLuint program, const OutputSettings& output, int height);
 
 // What a frame of `output` is composited to: display codes for PNG, half or float for EXR.
 OutputPixels outputPixelsFor(const OutputSettings& output);

@@ -67,6 +67,8 @@ void FrameTargets::resize(int newWidth, int newHeight) {
     target.framebuffer.reset();
     target.texture.reset();
   }
+  scene.framebuffer.reset();
+  scene.texture.reset();
 }
 
 OutputTarget& FrameTargets::output(OutputPixels pixels) {
@@ -78,6 +80,14 @@ OutputTarget& FrameTargets::output(OutputPixels pixels) {
     target.framebuffer = singleTargetFramebuffer(target.texture, "output");
   }
   return target;
+}
+
+OutputTarget& FrameTargets::sceneLinear() {
+  if (scene.texture.id() == 0) {
+    scene.texture = makeTarget(GL_RGBA32F, width, height);
+    scene.framebuffer = singleTargetFramebuffer(scene.texture, "scene");
+  }
+  return scene;
 }
 
 }  // namespace lgh

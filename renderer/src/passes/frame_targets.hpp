@@ -38,10 +38,15 @@ struct FrameTargets {
   // The composite's output, rows turned over (GL's first row is the image's top), made on first
   // use at each size: RGBA8UI display codes, RGBA16F or RGBA32F linear light.
   OutputTarget outputs[3];
+  // RGBA32F linear light, rows as GL stores them, made on first use at each size: frames with
+  // blended surfaces are composited here, the forward blend pass draws over it (depth-tested
+  // against the G-buffer's depth) and the display pass turns it into output(pixels).
+  OutputTarget scene;
 
   // Reallocates every target for this size (no-op when unchanged).
   void resize(int newWidth, int newHeight);
   OutputTarget& output(OutputPixels pixels);
+  OutputTarget& sceneLinear();
 };
 
 }  // namespace lgh

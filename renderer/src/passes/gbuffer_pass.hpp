@@ -1,38 +1,46 @@
 // G-buffer pass.
-//   inputs:  GpuScene (meshes, materials, textures), camera matrices, how points and lines are
-//            drawn (settings.primitives)
-//   outputs: FrameTargets::gbuffer (position, normal, albedo, material, emissive, layers, depth)
-//   shaders: glsl/gbuffer.vert, glsl/gbuffer.frag; lines and points through
-//            glsl/gbuffer_lines.geom / glsl/gbuffer_points.geom, which widen them into screen-space
-//            quads (every driver draws them the same, at any width)
+//   inputs:  GpuScene (meshes, textures), the frame's materials (MaterialTable: the scene's with
+//            the request's overrides), camera matrices, the analytic lights (Gouraud and flat
+//            shading light vertices and primitives here; relief mapping's self-shadowing), how
+//            points and lines are drawn (settings.primitives)
+//   outputs: FrameTargets::gbuffer (position, normal, albedo, material, emissive, layers, depth);
+//            blended surfaces (alphaMode BLEND) are left to ForwardBlendPass
+//   shaders: glsl/gbuffer.vert, glsl/gbuffer.frag (include/material_sampling.glsl); lines and
+//            points through glsl/gbuffer_lines.geom / glsl/gbuffer_points.geom, which widen them
+//            into screen-space quads; flat shading through glsl/gbuffer_flat.geom; displacement
+//            through glsl/gbuffer_displace.tesc/.tese (passes/surface_programs.hpp)
 #pragma once
-
-#include <array>
 
 #include "gl/gl_objects.hpp"
 #include "lgh/request.hpp"
 #include "passes/frame_targets.hpp"
+#include "passes/material_binding.hpp"
+#include "passes/surface_programs.hpp"
 #include "scene/camera.hpp"
 #include "scene/gpu_scene.hpp"
+#include "scene/material_table.hpp"
 
 namespace lgh {
 
 class GBufferPass {
  public:
   GBufferPass();
-  void run(const Scene& scene, const GpuScene& gpuScene, const CameraMatrices& camera,
-           const PrimitiveSettings& primitives, FrameTargets& targets);
+  struct Inputs {
+    const MaterialTable* materials = nullptr;
+    const CameraMatrices* camera = nullptr;
+    const PrimitiveSettings* primitives = nullptr;
+    GLuint lights = 0;  // SSBO of GpuLight
+    int lightCount = 0;
+  };
+  void run(const Inputs& inputs, GpuScene& gpuScene, FrameTargets& targets);
+
+  // The programs, shared with the forward pass.
+  SurfacePrograms& programs() { return programs_; }
+  float maxTessellationLevel() const { return maxTessellationLevel_; }
 
  private:
-  void setMaterial(GLuint program, const Scene& scene, const GpuScene& gpuScene, int materialIndex,
-                   bool unlit);
-  void setFrameUniforms(GLuint program, const CameraMatrices& camera,
-                        const PrimitiveSettings& primitives, const FrameTargets& targets,
-                        bool disk);
-  GLuint programFor(Topology topology) const;
-
-  // Indexed by Topology: triangles, lines, points.
-  std::array<gl::Program, 3> programs_;
+  SurfacePrograms programs_;
+  float maxTessellationLevel_ = 64.0F;
 };
 
 }  // namespace lgh

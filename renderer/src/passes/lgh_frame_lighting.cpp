@@ -69,8 +69,9 @@ void LghFrameLighting::traceVpls(const LghGiInputs& gi, const CachedScene& cache
   if (!vplTracer_) vplTracer_ = std::make_unique<VplTracer>();
   vplKey_.reset();  // the buffer no longer holds the surface VPLs
   giTracing_ = &gi.tracer;
-  vplLayout_ = vplTracer_->generate({gi.settings, gi.lights, gi.lightBuffer, gi.tracing}, cached,
-                                    gi.tracer, vplBuffer_, timer, report);
+  vplLayout_ =
+      vplTracer_->generate({gi.settings, gi.lights, gi.lightBuffer, gi.tracing, gi.materials},
+                           cached, gi.tracer, vplBuffer_, timer, report);
   vplCount_ = vplLayout_.count;
 }
 
@@ -209,7 +210,7 @@ void LghFrameLighting::readProbe(const CameraMatrices& camera, FrameTargets& fra
     const PathTracingSettings settings{gi->settings.bounces, probe.pathTracedSamples,
                                        gi->settings.seed, gi->tracing};
     probe.pathTraced = pathTracer_->render(
-        settings, {scene, gi->lights, gi->lightBuffer, camera, frame}, gi->tracer);
+        settings, {scene, gi->lights, gi->lightBuffer, camera, frame, gi->materials}, gi->tracer);
   }
   if (probe.bruteForce) {
     gl::ScopedGpuPass pass(timer, "lgh reference");

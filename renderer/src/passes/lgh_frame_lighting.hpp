@@ -87,6 +87,7 @@ struct LghGiInputs {
   GLuint lightBuffer = 0;
   ShadowTracing tracing = ShadowTracing::Auto;
   GiTracing& tracer;
+  const std::vector<Material>& materials;  // the frame's (MaterialTable): light paths' albedo
 };
 
 class LghFrameLighting {

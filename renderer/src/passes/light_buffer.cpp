@@ -11,7 +11,11 @@ GpuLight packLight(const LightDesc& light) {
   GpuLight packed{};
   packed.positionType = glm::vec4(v3(light.position), static_cast<float>(light.type));
   packed.directionRange = glm::vec4(direction, light.range);
-  packed.colorIntensity = glm::vec4(v3(light.color), light.intensity);
+  // The lecture's per-light colours; diffuse and specular are the light's colour unless set.
+  const float intensity = light.intensity;
+  packed.ambient = glm::vec4(v3(light.ambient) * intensity, 0.0F);
+  packed.diffuse = glm::vec4(v3(light.diffuse.value_or(light.color)) * intensity, 0.0F);
+  packed.specular = glm::vec4(v3(light.specular.value_or(light.color)) * intensity, 0.0F);
   packed.attenuation = glm::vec4(v3(light.attenuation), light.spotExponent);
   // cone.z: the size shadow rays see (glsl/shadow_ray_setup.comp).
   const float shadowSize =

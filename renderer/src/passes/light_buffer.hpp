@@ -14,11 +14,13 @@ namespace lgh {
 struct GpuLight {
   glm::vec4 positionType;
   glm::vec4 directionRange;
-  glm::vec4 colorIntensity;
+  glm::vec4 ambient;   // rgb x intensity
+  glm::vec4 diffuse;   // rgb x intensity
+  glm::vec4 specular;  // rgb x intensity
   glm::vec4 attenuation;
   glm::vec4 cone;
 };
-static_assert(sizeof(GpuLight) == 80, "GpuLight must match the std430 layout of Light");
+static_assert(sizeof(GpuLight) == 112, "GpuLight must match the std430 layout of Light");
 
 GpuLight packLight(const LightDesc& light);
 

@@ -22,6 +22,7 @@
 #include "lgh/request.hpp"
 #include "request/json_pointer.hpp"
 #include "request/json_text.hpp"
+#include "request/material_parameters.hpp"
 #include "request/schema_validation.hpp"
 
 namespace lgh {
@@ -149,6 +150,9 @@ LightDesc readLight(const json& object) {
   read(object, "inner_cone_angle", light.innerConeAngle);
   read(object, "outer_cone_angle", light.outerConeAngle);
   read(object, "spot_exponent", light.spotExponent);
+  readVec3(object, "ambient", light.ambient);
+  if (object.contains("diffuse")) readVec3(object, "diffuse", light.diffuse.emplace());
+  if (object.contains("specular")) readVec3(object, "specular", light.specular.emplace());
   read(object, "radius", light.radius);
   read(object, "angular_radius", light.angularRadius);
   return light;
@@ -223,6 +227,7 @@ GiSettings readGi(const json& object) {
 RenderSettings readSettings(const json& object) {
   RenderSettings settings;
   read(object, "ambient", settings.ambient);
+  readEnum(object, "texture_compression", settings.textureCompression);
   read(object, "ignore_unsupported_extensions", settings.ignoreUnsupportedExtensions);
   if (const auto it = object.find("primitives"); it != object.end()) {
     settings.primitives = readPrimitives(*it);
@@ -258,6 +263,9 @@ RenderRequest readRequestWithoutScene(const json& request) {
     for (const json& light : *lights) result.lights.push_back(readLight(light));
   }
   read(request, "use_default_lights", result.useDemoLightsWhenNone);
+  if (const auto materials = request.find("materials"); materials != request.end()) {
+    for (const json& entry : *materials) result.materials.push_back(readMaterialOverride(entry));
+  }
   if (const auto it = request.find("camera"); it != request.end()) result.camera = readCamera(*it);
   if (const auto it = request.find("output"); it != request.end()) result.output = readOutput(*it);
   if (const auto it = request.find("settings"); it != request.end()) {

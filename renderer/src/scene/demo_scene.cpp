@@ -5,10 +5,28 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scene/procedural_textures.hpp"
+
 namespace lgh {
 namespace {
 
-enum DemoMaterial { kFloor, kWhite, kRed, kGreen, kMetal, kPanel };
+enum DemoMaterial {
+  kFloor,
+  kWhite,
+  kRed,
+  kGreen,
+  kMetal,
+  kPanel,
+  // The row of the lecture's illumination models, front of the room, left to right.
+  kModelGgx,
+  kModelPhong,
+  kModelBlinnPhong,
+  kModelLambert,
+  kModelOrenNayar,
+  kModelCookTorrance,
+};
+constexpr int kModelRowFirst = kModelGgx;
+constexpr int kModelRowCount = 6;
 
 // Appends a rectangle centred at `center` facing `normal`. The texture's u runs along `uAxis` and
 // its "up" (decreasing glTF v) along cross(normal, uAxis), so the tangent frame is right-handed
@@ -36,6 +54,7 @@ void addQuad(Primitive& primitive, const glm::vec3& center, const glm::vec3& nor
 Primitive makeRoomSurface(int material) {
   Primitive primitive;
   primitive.material = material;
+  primitive.tangents = true;  // every generator below writes a right-handed frame
   return primitive;
 }
 
@@ -101,6 +120,13 @@ Mesh makeSphere(float radius, int rings, int segments, int material) {
   return Mesh{"sphere", {sphere}};
 }
 
+// One small sphere per illumination model, named after it.
+Mesh makeModelSphere(int material, const std::string& name) {
+  Mesh mesh = makeSphere(0.1F, 16, 32, material);
+  mesh.name = name;
+  return mesh;
+}
+
 Mesh makeCeilingPanel() {
   Primitive panel = makeRoomSurface(kPanel);
   // 1 mm below the ceiling, so the two never z-fight.
@@ -108,25 +134,20 @@ Mesh makeCeilingPanel() {
   return Mesh{"ceiling_panel", {panel}};
 }
 
-// 256 x 256 sRGB checker, 8 x 8 tiles of 32 pixels.
-Image8 makeChecker() {
-  constexpr int kSize = 256;
-  constexpr int kTile = kSize / 8;
-  Image8 image;
-  image.width = kSize;
-  image.height = kSize;
-  image.channels = 4;
-  image.pixels.resize(static_cast<std::size_t>(kSize) * kSize * 4);
-  for (int py = 0; py < kSize; ++py) {
-    for (int px = 0; px < kSize; ++px) {
-      const bool light = ((px / kTile) + (py / kTile)) % 2 == 0;
-      const std::uint8_t value = light ? 200 : 90;
-      std::uint8_t* pixel = &image.pixels[(static_cast<std::size_t>(py) * kSize + px) * 4];
-      pixel[0] = pixel[1] = pixel[2] = value;
-      pixel[3] = 255;
-    }
-  }
-  return image;
+// The demo's images, also its textures (Scene::textures, by the same index): what a request's
+// material parameters may name.
+enum DemoTexture {
+  kCheckerTexture,
+  kBrickHeightTexture,
+  kBrickNormalTexture,
+  kLightMapTexture,
+  kBrickColorTexture
+};
+
+std::vector<Image8> makeImages() {
+  const Image8 bricks = makeBrickHeightImage(128, 8);
+  return {makeCheckerImage(256, 8, 200, 90), bricks, makeNormalMapImage(bricks, 6.0F),
+          makeLightMapImage(64), makeBrickColorImage(128, 8)};
 }
 
 Material dielectric(const std::string& name, const glm::vec3& color) {
@@ -138,10 +159,41 @@ Material dielectric(const std::string& name, const glm::vec3& color) {
   return material;
 }
 
+// The lecture's models side by side, all the same clay colour (Cook-Torrance as plastic).
+void addModelRowMaterials(std::vector<Material>& materials) {
+  const glm::vec3 clay(0.75F, 0.42F, 0.25F);
+  Material ggx = dielectric("model_metallic_roughness", clay);
+  ggx.roughnessFactor = 0.35F;
+  materials.push_back(ggx);
+  Material phong = dielectric("model_phong", clay);
+  phong.model = MaterialModel::Phong;
+  phong.classic.specular = glm::vec3(0.6F);
+  phong.classic.shininess = 40.0F;
+  materials.push_back(phong);
+  Material blinn = phong;
+  blinn.name = "model_blinn_phong";
+  blinn.model = MaterialModel::BlinnPhong;
+  blinn.classic.shininess = 160.0F;  // about Phong's highlight at 40: N.H's angle is half R.V's
+  materials.push_back(blinn);
+  Material lambert = dielectric("model_lambert", clay);
+  lambert.model = MaterialModel::OrenNayar;
+  lambert.classic.sigma = 0.0F;
+  materials.push_back(lambert);
+  Material orenNayar = lambert;
+  orenNayar.name = "model_oren_nayar";
+  orenNayar.classic.sigma = 0.8F;
+  materials.push_back(orenNayar);
+  Material cookTorrance = dielectric("model_cook_torrance", clay);
+  cookTorrance.model = MaterialModel::CookTorrance;
+  cookTorrance.classic.f0 = glm::vec3(0.04F);  // plastic
+  cookTorrance.classic.m = 0.15F;
+  materials.push_back(cookTorrance);
+}
+
 std::vector<Material> makeMaterials() {
   std::vector<Material> materials;
   Material floor = dielectric("floor_checker", glm::vec3(1.0F));
-  floor.baseColorTexture.image = 0;
+  floor.baseColorTexture.image = kCheckerTexture;
   materials.push_back(floor);
   materials.push_back(dielectric("white", glm::vec3(0.8F)));
   materials.push_back(dielectric("red", glm::vec3(0.63F, 0.065F, 0.05F)));
@@ -153,6 +205,7 @@ std::vector<Material> makeMaterials() {
   Material panel = dielectric("ceiling_panel", glm::vec3(0.8F));
   panel.emissiveFactor = glm::vec3(1.0F, 0.95F, 0.85F);
   materials.push_back(panel);
+  addModelRowMaterials(materials);
   return materials;
 }
 
@@ -216,8 +269,22 @@ Scene makeDemoScene() {
       {3, placed({0.4F, 0.0F, 0.3F}, -18.0F)},
       {4, placed({0.4F, kShortBoxSize + kSphereRadius, 0.3F}, 0.0F)},
   };
+  static const char* const kRowNames[kModelRowCount] = {
+      "ggx_sphere",     "phong_sphere",      "blinn_phong_sphere",
+      "lambert_sphere", "oren_nayar_sphere", "cook_torrance_sphere"};
+  for (int i = 0; i < kModelRowCount; ++i) {
+    scene.meshes.push_back(makeModelSphere(kModelRowFirst + i, kRowNames[i]));
+    const float x = -0.75F + 0.3F * static_cast<float>(i);
+    scene.instances.push_back(
+        {static_cast<int>(scene.meshes.size()) - 1, placed({x, 0.1F, 0.82F}, 0.0F)});
+  }
   scene.materials = makeMaterials();
-  scene.images.push_back(makeChecker());
+  scene.images = makeImages();
+  for (int image = 0; image < static_cast<int>(scene.images.size()); ++image) {
+    TextureRef texture;
+    texture.image = image;
+    scene.textures.push_back(texture);
+  }
   scene.lights = makeLights();
   scene.cameras.push_back(makeCamera());
   scene.computeBounds();

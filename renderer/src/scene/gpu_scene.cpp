@@ -1,7 +1,10 @@
 #include "scene/gpu_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+
+#include <fmt/format.h>
 
 namespace lgh {
 namespace {
@@ -17,13 +20,17 @@ bool usesMipmaps(int minFilter) {
          minFilter == GL_NEAREST_MIPMAP_LINEAR || minFilter == GL_LINEAR_MIPMAP_LINEAR;
 }
 
-int mipLevels(int width, int height) {
-  return 1 + static_cast<int>(std::floor(std::log2(static_cast<float>(std::max(width, height)))));
+glm::vec3 boundsCenter(const Primitive& primitive, const glm::mat4& world) {
+  Bounds bounds;
+  for (const Vertex& vertex : primitive.vertices) bounds.extend(vertex.position);
+  if (bounds.empty()) return glm::vec3(world[3]);
+  return glm::vec3(world * glm::vec4(bounds.center(), 1.0F));
 }
 
 }  // namespace
 
-GpuScene::GpuScene(const Scene& scene, float maxAnisotropy) : maxAnisotropy_(maxAnisotropy) {
+GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options)
+    : scene_(scene), options_(options), capabilities_(TextureCapabilities::query()) {
   for (const Mesh& mesh : scene.meshes) {
     auto& gpuMesh = meshes_.emplace_back();
     for (const auto* list : {&mesh.primitives, &mesh.linesAndPoints}) {
@@ -41,10 +48,16 @@ GpuScene::GpuScene(const Scene& scene, float maxAnisotropy) : maxAnisotropy_(max
       const Primitive& primitive =
           triangles ? mesh.primitives[p] : mesh.linesAndPoints[p - mesh.primitives.size()];
       drawItems_.push_back({gpuMesh[p].vertexArray.id(), gpuMesh[p].indexCount, primitive.material,
-                            instance.world, primitive.topology, primitive.unlit});
+                            instance.world, primitive.topology, primitive.unlit, primitive.tangents,
+                            boundsCenter(primitive, instance.world)});
     }
   }
-  uploadTextures(scene);
+  // The materials' own textures now, so that a scene's first frame and its load time carry them.
+  for (const Material& material : scene.materials) {
+    for (const MaterialTextureSlot& slot : materialTextureSlots(material)) {
+      texture(*slot.texture, slot.usage);
+    }
+  }
 }
 
 void GpuScene::uploadPrimitive(const Primitive& primitive, GpuPrimitive& gpu) {
@@ -54,7 +67,7 @@ void GpuScene::uploadPrimitive(const Primitive& primitive, GpuPrimitive& gpu) {
                        primitive.vertices.data(), 0);
   glNamedBufferStorage(gpu.indices.id(), std::max<GLsizeiptr>(indexBytes, 1),
                        primitive.indices.data(), 0);
-  gpuBytes_ += static_cast<std::size_t>(vertexBytes + indexBytes);
+  geometryBytes_ += static_cast<std::size_t>(vertexBytes + indexBytes);
   gpu.indexCount = static_cast<GLsizei>(primitive.indices.size());
   const GLuint vao = gpu.vertexArray.id();
   glVertexArrayVertexBuffer(vao, 0, gpu.vertices.id(), 0, sizeof(Vertex));
@@ -67,37 +80,32 @@ void GpuScene::uploadPrimitive(const Primitive& primitive, GpuPrimitive& gpu) {
   setAttribute(vao, 5, 4, offsetof(Vertex, color));
 }
 
-void GpuScene::uploadTextures(const Scene& scene) {
-  textures_.resize(scene.images.size());
-  auto upload = [&](const TextureRef& ref, bool srgb) {
-    if (!ref.valid() || static_cast<size_t>(ref.image) >= scene.images.size()) return;
-    auto key = std::make_pair(ref.image, srgb);
-    gl::Texture& texture = textures_[static_cast<size_t>(ref.image)][srgb ? 1 : 0];
-    if (texture.id() == 0) {
-      const Image8& image = scene.images[static_cast<size_t>(ref.image)];
-      if (image.width <= 0 || image.height <= 0 || image.channels != 4) return;
-      texture = gl::Texture(GL_TEXTURE_2D);
-      const int levels = mipLevels(image.width, image.height);
-      glTextureStorage2D(texture.id(), levels, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, image.width,
-                         image.height);
-      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-      glTextureSubImage2D(texture.id(), 0, 0, 0, image.width, image.height, GL_RGBA,
-                          GL_UNSIGNED_BYTE, image.pixels.data());
-      glGenerateTextureMipmap(texture.id());
-      gpuBytes_ += static_cast<std::size_t>(image.width) * image.height * 4 * 4 / 3;
-    }
-    bindings_[key] = {texture.id(), samplerFor(ref.sampler)};
-  };
-  for (const Material& material : scene.materials) {
-    for (const MaterialTextureSlot& slot : materialTextureSlots(material)) {
-      upload(*slot.texture, slot.srgb);
-    }
-  }
+const GpuScene::UploadedImage* GpuScene::imageTexture(int image, TextureUsage usage) {
+  if (image < 0 || static_cast<size_t>(image) >= scene_.images.size()) return nullptr;
+  const Image8& pixels = scene_.images[static_cast<size_t>(image)];
+  if (pixels.width <= 0 || pixels.height <= 0 || pixels.channels != 4) return nullptr;
+  const auto blocks = scene_.compressedImages.find(image);
+  const BlockCompressedImage* precompressed =
+      blocks == scene_.compressedImages.end() ? nullptr : &blocks->second;
+  // Without compression every linear use shares one RGBA8 texture.
+  const bool distinctUses = options_.compression == TextureCompression::Bc;
+  const TextureUsage kind =
+      distinctUses || usage == TextureUsage::Color ? usage : TextureUsage::Data;
+  const auto key = std::make_pair(image, static_cast<int>(kind));
+  if (const auto it = textures_.find(key); it != textures_.end()) return &it->second;
+  UploadedTexture uploaded =
+      uploadTexture(pixels, precompressed, kind, options_.compression, capabilities_, warnings_);
+  textureBytes_ += uploaded.bytes;
+  memory_.bytes += uploaded.bytes;
+  memory_.uncompressedBytes += uploaded.uncompressedBytes;
+  memory_.textures += 1;
+  memory_.compressed += uploaded.compressed ? 1 : 0;
+  UploadedImage entry{std::move(uploaded.texture), uploaded.twoChannel};
+  return &textures_.emplace(key, std::move(entry)).first->second;
 }
 
 GLuint GpuScene::samplerFor(const Sampler& sampler) {
-  auto key = std::make_tuple(sampler.magFilter, sampler.minFilter, sampler.wrapS, sampler.wrapT);
-  auto it = samplers_.find(key);
+  auto it = samplers_.find(sampler);
   if (it != samplers_.end()) return it->second.id();
   gl::SamplerObject object;
   const GLuint id = object.id();
@@ -106,15 +114,32 @@ GLuint GpuScene::samplerFor(const Sampler& sampler) {
   glSamplerParameteri(id, GL_TEXTURE_MIN_FILTER, sampler.minFilter);
   glSamplerParameteri(id, GL_TEXTURE_WRAP_S, sampler.wrapS);
   glSamplerParameteri(id, GL_TEXTURE_WRAP_T, sampler.wrapT);
-  if (usesMipmaps(sampler.minFilter) && maxAnisotropy_ > 1.0F) {
-    glSamplerParameterf(id, GL_TEXTURE_MAX_ANISOTROPY, maxAnisotropy_);
+  glSamplerParameterfv(id, GL_TEXTURE_BORDER_COLOR, &sampler.borderColor.r);
+  // Anisotropy samples the mip levels along the footprint: only with mipmaps. Unset (0): the
+  // device's maximum; a request's value is capped at it.
+  const float wanted = sampler.anisotropy > 0.0F ? sampler.anisotropy : options_.maxAnisotropy;
+  const float anisotropy = std::clamp(wanted, 1.0F, std::max(options_.maxAnisotropy, 1.0F));
+  if (sampler.anisotropy > anisotropy) {
+    warnings_.push_back(fmt::format("anisotropy {} capped at the device's maximum {}",
+                                    sampler.anisotropy, anisotropy));
   }
-  return samplers_.emplace(key, std::move(object)).first->second.id();
+  if (usesMipmaps(sampler.minFilter) && anisotropy > 1.0F) {
+    glSamplerParameterf(id, GL_TEXTURE_MAX_ANISOTROPY, anisotropy);
+  }
+  return samplers_.emplace(sampler, std::move(object)).first->second.id();
 }
 
-GpuScene::BoundTexture GpuScene::texture(const TextureRef& ref, bool srgb) const {
-  auto it = bindings_.find({ref.image, srgb});
-  return it == bindings_.end() ? BoundTexture{} : it->second;
+GpuScene::BoundTexture GpuScene::texture(const TextureRef& ref, TextureUsage usage) {
+  if (!ref.valid()) return {};
+  const UploadedImage* image = imageTexture(ref.image, usage);
+  if (image == nullptr) return {};
+  return {image->texture.id(), samplerFor(ref.sampler), image->twoChannel};
+}
+
+std::vector<std::string> GpuScene::takeWarnings() {
+  std::vector<std::string> warnings;
+  warnings.swap(warnings_);
+  return warnings;
 }
 
 }  // namespace lgh

@@ -1,10 +1,14 @@
 // A Scene uploaded to GL: vertex/index buffers per primitive (triangles, lines and points),
-// textures with mipmaps (sRGB or linear as the material slot needs), sampler objects from the glTF
-// samplers with anisotropic filtering. Owned by the scene cache; passes only draw it.
+// textures with mipmaps per use (sRGB colour, data, normal map, one channel; block-compressed when
+// asked or loaded so: scene/texture_upload.hpp), and sampler objects from the samplers the
+// materials ask for (glTF's, or a request's: wrap modes with a border colour, filters,
+// anisotropy up to the device's maximum). Textures and samplers are made on first use, since a
+// request's material parameters may name textures and sampling no material of the asset uses.
+// Owned by the scene cache; passes only draw it.
 #pragma once
 
-#include <functional>
 #include <map>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -12,12 +16,19 @@
 
 #include "gl/gl_objects.hpp"
 #include "scene/scene.hpp"
+#include "scene/texture_upload.hpp"
 
 namespace lgh {
 
+struct GpuSceneOptions {
+  float maxAnisotropy = 1.0F;  // the device's
+  TextureCompression compression = TextureCompression::None;
+};
+
 class GpuScene {
  public:
-  GpuScene(const Scene& scene, float maxAnisotropy);
+  // Keeps a reference to `scene` (its images upload on first use): the cache entry owns both.
+  GpuScene(const Scene& scene, const GpuSceneOptions& options);
 
   struct DrawItem {
     GLuint vertexArray;
@@ -25,7 +36,9 @@ class GpuScene {
     int material;  // -1: default material
     glm::mat4 world;
     Topology topology = Topology::Triangles;
-    bool unlit = false;  // lines and points without normals
+    bool unlit = false;      // lines and points without normals
+    bool tangents = false;   // the vertices carry a tangent frame
+    glm::vec3 center{0.0F};  // world-space centre of the bounds: sorting blended surfaces
   };
   // Every primitive of every instance.
   const std::vector<DrawItem>& drawItems() const { return drawItems_; }
@@ -34,10 +47,23 @@ class GpuScene {
   struct BoundTexture {
     GLuint texture = 0;
     GLuint sampler = 0;
+    bool twoChannel = false;  // a BC5 normal map
   };
-  BoundTexture texture(const TextureRef& ref, bool srgb) const;
+  BoundTexture texture(const TextureRef& ref, TextureUsage usage);
 
-  std::size_t gpuBytes() const { return gpuBytes_; }
+  std::size_t gpuBytes() const { return geometryBytes_ + textureBytes_; }
+
+  // What the textures take: for the result's paths.texture_memory.
+  struct TextureMemory {
+    std::size_t bytes = 0;
+    std::size_t uncompressedBytes = 0;  // the same textures as RGBA8
+    int textures = 0;
+    int compressed = 0;
+  };
+  TextureMemory textureMemory() const { return memory_; }
+  // Warnings of texture uploads since the last call (formats the device lacks).
+  std::vector<std::string> takeWarnings();
+  float maxAnisotropy() const { return options_.maxAnisotropy; }
 
  private:
   struct GpuPrimitive {
@@ -46,18 +72,26 @@ class GpuScene {
     gl::Buffer indices;
     GLsizei indexCount = 0;
   };
+  struct UploadedImage {
+    gl::Texture texture;
+    bool twoChannel = false;
+  };
   GLuint samplerFor(const Sampler& sampler);
-  void uploadTextures(const Scene& scene);
+  const UploadedImage* imageTexture(int image, TextureUsage usage);
   void uploadPrimitive(const Primitive& primitive, GpuPrimitive& gpu);
 
+  const Scene& scene_;
+  GpuSceneOptions options_;
+  TextureCapabilities capabilities_;
   std::vector<std::vector<GpuPrimitive>> meshes_;
   std::vector<DrawItem> drawItems_;
-  // Per image: [0] linear, [1] sRGB (only the variants the materials use are created).
-  std::vector<std::array<gl::Texture, 2>> textures_;
-  std::map<std::tuple<int, int, int, int>, gl::SamplerObject> samplers_;
-  std::map<std::pair<int, bool>, BoundTexture> bindings_;
-  float maxAnisotropy_ = 1.0F;
-  std::size_t gpuBytes_ = 0;
+  // By (image, kind): the kinds an upload distinguishes (without compression colour and data).
+  std::map<std::pair<int, int>, UploadedImage> textures_;
+  std::map<Sampler, gl::SamplerObject> samplers_;
+  std::size_t geometryBytes_ = 0;
+  std::size_t textureBytes_ = 0;
+  TextureMemory memory_;
+  std::vector<std::string> warnings_;
 };
 
 }  // namespace lgh

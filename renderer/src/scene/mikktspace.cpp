@@ -275,7 +275,9 @@ class MikkTSpace {
 
 // A tangent the shaders can use: orthogonal to n, unit, finite.
 glm::vec4 finishFrame(const CornerFrame& frame, const glm::vec3& normal) {
-  glm::vec3 t = frame.tangent;
+  // Without UV area (a mesh without texture coordinates) the accumulated direction may lie along
+  // the normal: keep only its part in the tangent plane.
+  glm::vec3 t = frame.tangent - normal * glm::dot(normal, frame.tangent);
   if (!isUsableDirection(t)) t = anyPerpendicular(normal);
   return glm::vec4(glm::normalize(t), frame.sign);
 }

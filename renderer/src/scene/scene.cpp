@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace lgh {
 namespace {
@@ -90,21 +91,38 @@ bool Material::hasLayers() const {
 namespace lgh {
 
 std::array<MaterialTextureSlot, kMaterialTextureSlots> materialTextureSlots(const Material& m) {
+  using U = TextureUsage;
+  const bool classic = isClassicModel(m.model);
+  // The layers' slots 10 and 11 carry the classic models' gloss and specular maps.
+  const MaterialTextureSlot gloss =
+      classic ? MaterialTextureSlot{&m.classic.shininessTexture, U::SingleChannel}
+              : MaterialTextureSlot{&m.specular.texture, U::Data};
+  const TextureRef* specularColor = classic ? &m.classic.specularTexture : &m.specular.colorTexture;
   return {{
-      {&m.baseColorTexture, true},
-      {&m.metallicRoughnessTexture, false},
-      {&m.normalTexture, false},
-      {&m.occlusionTexture, false},
-      {&m.emissiveTexture, true},
-      {&m.clearcoat.texture, false},
-      {&m.clearcoat.roughnessTexture, false},
-      {&m.clearcoat.normalTexture, false},
-      {&m.sheen.colorTexture, true},
-      {&m.sheen.roughnessTexture, false},
-      {&m.specular.texture, false},
-      {&m.specular.colorTexture, true},
-      {&m.transmission.texture, false},
+      {&m.baseColorTexture, U::Color},
+      {&m.metallicRoughnessTexture, U::Data},
+      {&m.normalTexture, U::Normal},
+      {&m.occlusionTexture, U::SingleChannel},
+      {&m.emissiveTexture, U::Color},
+      {&m.clearcoat.texture, U::SingleChannel},
+      {&m.clearcoat.roughnessTexture, U::Data},
+      {&m.clearcoat.normalTexture, U::Normal},
+      {&m.sheen.colorTexture, U::Color},
+      {&m.sheen.roughnessTexture, U::Data},
+      gloss,
+      {specularColor, U::Color},
+      {&m.transmission.texture, U::SingleChannel},
+      {&m.lightMap, U::Color},
+      {&m.surface.heightTexture, U::SingleChannel},
   }};
+}
+
+bool Sampler::operator<(const Sampler& other) const {
+  auto key = [](const Sampler& s) {
+    return std::make_tuple(s.magFilter, s.minFilter, s.wrapS, s.wrapT, s.borderColor.r,
+                           s.borderColor.g, s.borderColor.b, s.borderColor.a, s.anisotropy);
+  };
+  return key(*this) < key(other);
 }
 
 }  // namespace lgh

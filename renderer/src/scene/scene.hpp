@@ -6,10 +6,14 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "scene/block_compression.hpp"
 
 #include "lgh/image.hpp"
 #include "lgh/request.hpp"
@@ -38,6 +42,10 @@ struct Primitive {
   Topology topology = Topology::Triangles;
   // Lines and points without NORMAL are drawn unlit, as the glTF specification asks.
   bool unlit = false;
+  // Whether Vertex::tangent holds a real tangent frame (the asset's or MikkTSpace's). Without one,
+  // the techniques that need a frame (parallax, relief) derive it per pixel from the derivatives
+  // of position and texture coordinates.
+  bool tangents = false;
 };
 
 struct Mesh {
@@ -54,14 +62,16 @@ struct MeshInstance {
   glm::mat4 world{1.0F};
 };
 
-enum class AlphaMode { Opaque, Mask, Blend };
-
-// glTF sampler values (GL enums as glTF stores them).
+// glTF sampler values (GL enums as glTF stores them), plus what glTF cannot say: clamp to border
+// (GL_CLAMP_TO_BORDER) with its colour, and the anisotropy (0: the device's maximum).
 struct Sampler {
   int magFilter = 0x2601;  // GL_LINEAR
   int minFilter = 0x2703;  // GL_LINEAR_MIPMAP_LINEAR
   int wrapS = 0x2901;      // GL_REPEAT
   int wrapT = 0x2901;
+  glm::vec4 borderColor{0.0F};
+  float anisotropy = 0.0F;
+  bool operator<(const Sampler& other) const;
 };
 
 // KHR_texture_transform: uv' = T * R * S * uv (offset, rotation, scale); identity by default.
@@ -79,14 +89,6 @@ struct TextureRef {
   Sampler sampler;
   UvTransform transform;
   bool valid() const { return image >= 0; }
-};
-
-// How the lighting passes shade a material: written to the G-buffer as a small integer, switched on
-// by evaluateBrdfCosine() in glsl/include/brdf.glsl. New models get the next free number here and
-// a case there (glsl/include/material_models.glsl keeps the numbers in step).
-enum class MaterialModel : std::uint8_t {
-  MetallicRoughness = 0,  // glTF PBR, with the KHR_materials_* layers below
-  Unlit = 1,              // KHR_materials_unlit (and lines/points without normals)
 };
 
 // KHR_materials_clearcoat: a dielectric coat (IOR 1.5) over the base material.
@@ -129,6 +131,37 @@ struct Transmission {
   glm::vec3 tint() const;
 };
 
+// The lecture's classic models (Phong, Blinn-Phong, Oren-Nayar, Cook-Torrance): what they take
+// beside the diffuse colour (Material::baseColorFactor) and the emission (emissiveFactor).
+struct ClassicMaterial {
+  std::optional<glm::vec3> ambient;  // ambient_material; unset: the diffuse colour (textured)
+  glm::vec3 specular{0.5F};          // specular_material (Phong, Blinn-Phong)
+  float shininess = 32.0F;           // m_shi
+  float sigma = 0.3F;                // Oren-Nayar roughness, radians
+  float m = 0.3F;                    // Cook-Torrance roughness: RMS slope of the microfacets
+  glm::vec3 f0{0.04F};               // Cook-Torrance Fresnel reflectance at normal incidence
+  TextureRef specularTexture;        // specular map, sRGB: multiplies specular (Cook-Torrance: F)
+  TextureRef shininessTexture;       // gloss map, R: multiplies shininess (pixel shading)
+  ShadingMode shading = ShadingMode::Pixel;
+};
+
+// Surface detail from the normal and height maps (SurfaceDetail says which technique).
+struct SurfaceDetailMaterial {
+  SurfaceDetail technique = SurfaceDetail::Normal;
+  TextureRef heightTexture;  // R; 1 is the top of the surface
+  // Bump and displacement: the height of R = 1 in world units. Parallax and relief: the lecture's
+  // scale s in texture units (relief: the depth of the height field).
+  float heightScale = 0.05F;
+  std::optional<float> parallaxBias;  // the lecture's b; unset: heightScale / 2
+  int reliefLinearSteps = 32;
+  int reliefBinarySteps = 6;
+  bool reliefSelfShadow = true;
+  bool reliefSilhouettes = false;
+  float tessellationPixels = 8.0F;  // displacement: target edge length of a patch on screen
+  int tessellationMaxLevel = 64;
+  bool usesHeight() const { return technique >= SurfaceDetail::Bump && heightTexture.valid(); }
+};
+
 // glTF PBR metallic-roughness material, with the KHR_materials_* extensions this renderer knows.
 struct Material {
   std::string name;
@@ -151,17 +184,28 @@ struct Material {
   Sheen sheen;
   Specular specular;
   Transmission transmission;
+  ClassicMaterial classic;
+  SurfaceDetailMaterial surface;
+  TextureRef lightMap;  // precomputed illumination (usually on TEXCOORD_1), multiplied in
+  float lightMapStrength = 1.0F;
+  bool bicubic = false;  // textures filtered bicubically in the shader
   // Whether any layer above differs from plain metallic-roughness (the G-buffer then carries them).
   bool hasLayers() const;
 };
 
+// What a texture slot holds, which decides its GL format: sRGB colour, linear data (RGBA), a
+// tangent-space normal map (two channels suffice: BC5 when compressed) or one channel (R: BC4).
+enum class TextureUsage : std::uint8_t { Color, Data, Normal, SingleChannel };
+
 // Every texture of a material in the G-buffer shader's slot order (texture unit = index; see
-// glsl/gbuffer.frag), with whether it holds sRGB colour.
+// glsl/include/material_sampling.glsl), with what it holds. Slots 10 and 11 hold the
+// KHR_materials_specular textures of metallic-roughness materials and the gloss and specular
+// maps of the classic models.
 struct MaterialTextureSlot {
   const TextureRef* texture;
-  bool srgb;
+  TextureUsage usage;
 };
-inline constexpr std::size_t kMaterialTextureSlots = 13;
+inline constexpr std::size_t kMaterialTextureSlots = 15;
 std::array<MaterialTextureSlot, kMaterialTextureSlots> materialTextureSlots(
     const Material& material);
 
@@ -193,7 +237,13 @@ struct Scene {
   std::vector<Mesh> meshes;
   std::vector<MeshInstance> instances;
   std::vector<Material> materials;
-  std::vector<Image8> images;     // decoded RGBA8
+  std::vector<Image8> images;  // decoded RGBA8
+  // Block-compressed payloads of images loaded precompressed (DDS), by index into images (which
+  // holds their decoded pixels for the CPU's use).
+  std::map<int, BlockCompressedImage> compressedImages;
+  // The asset's textures (glTF's textures array; the demo's own list): what material parameters
+  // of a request or of glTF extras name by index. An entry whose image failed is invalid.
+  std::vector<TextureRef> textures;
   std::vector<LightDesc> lights;  // world space
   std::vector<SceneCamera> cameras;
   Bounds bounds;                      // world space, over all instances

@@ -52,12 +52,18 @@ std::string optionsKey(const SceneLoadOptions& options) {
   return key;
 }
 
+// Texture compression changes the upload, whatever the source (the builtin scenes included).
+std::string uploadKey(const SceneLoadOptions& options) {
+  return options.textureCompression == TextureCompression::Bc ? "|bc" : "";
+}
+
 }  // namespace
 
 std::string SceneCache::keyFor(const SceneSource& source, const SceneLoadOptions& options) const {
   const std::string base = sourceKey(source);
-  return base.empty() || source.kind == SceneSource::Kind::Builtin ? base
-                                                                   : base + optionsKey(options);
+  if (base.empty()) return base;
+  if (source.kind == SceneSource::Kind::Builtin) return base + uploadKey(options);
+  return base + optionsKey(options) + uploadKey(options);
 }
 
 std::string SceneCache::sourceKey(const SceneSource& source) const {
@@ -175,7 +181,8 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
   entry->scene = std::move(parsed.scene);
   lookup.loadMs = parsed.loadMs;
   const Stopwatch uploadTimer;
-  entry->gpu = std::make_unique<GpuScene>(entry->scene, maxAnisotropy_);
+  entry->gpu = std::make_unique<GpuScene>(
+      entry->scene, GpuSceneOptions{maxAnisotropy_, options.textureCompression});
   lookup.uploadMs = uploadTimer.elapsedMs();
   lookup.entry = entry;
   slots_.push_front({key, entry});

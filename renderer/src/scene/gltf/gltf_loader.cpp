@@ -57,21 +57,15 @@ using json = nlohmann::json;
 // the request says to ignore it. KHR_texture_basisu is not here: no maintained transcoder is a
 // Debian package, so a texture that only has a KTX2 image is refused (or, optional, falls back to
 // the texture's plain source).
-const std::set<std::string, std::less<>> kSupportedExtensions = {"KHR_lights_punctual",
-                                                                 "KHR_materials_emissive_strength",
-                                                                 "KHR_mesh_quantization",
-                                                                 "KHR_texture_transform",
-                                                                 "KHR_materials_unlit",
-                                                                 "KHR_materials_clearcoat",
-                                                                 "KHR_materials_sheen",
-                                                                 "KHR_materials_specular",
-                                                                 "KHR_materials_ior",
-                                                                 "KHR_materials_transmission",
-                                                                 "KHR_materials_volume",
-                                                                 "KHR_materials_variants",
-                                                                 "KHR_draco_mesh_compression",
-                                                                 "EXT_meshopt_compression",
-                                                                 "EXT_texture_webp"};
+const std::set<std::string, std::less<>> kSupportedExtensions = {
+    "KHR_lights_punctual",        "KHR_materials_emissive_strength",
+    "KHR_mesh_quantization",      "KHR_texture_transform",
+    "KHR_materials_unlit",        "KHR_materials_clearcoat",
+    "KHR_materials_sheen",        "KHR_materials_specular",
+    "KHR_materials_ior",          "KHR_materials_transmission",
+    "KHR_materials_volume",       "KHR_materials_variants",
+    "KHR_draco_mesh_compression", "EXT_meshopt_compression",
+    "EXT_texture_webp",           "MSFT_texture_dds"};
 
 // Required extensions we lack fail the load; optional ones are ignored with a warning.
 void checkExtensions(const json& document, LoadContext& ctx) {

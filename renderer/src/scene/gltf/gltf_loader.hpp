@@ -43,12 +43,13 @@
 
 namespace lgh {
 
-// What the request chooses about a load: the pose, the material variant, and whether unsupported
-// required extensions are tolerated. Part of the scene cache's key.
+// What the request chooses about a load: the pose, the material variant, whether unsupported
+// required extensions are tolerated, and how textures are uploaded. Part of the scene cache's key.
 struct SceneLoadOptions {
   std::optional<SceneAnimation> animation;   // none: the bind pose (node transforms as stored)
   std::string materialVariant;               // KHR_materials_variants name; "": the default
   bool ignoreUnsupportedExtensions = false;  // render anyway, with a warning
+  TextureCompression textureCompression = TextureCompression::None;  // at upload
 };
 
 struct SceneLoadLimits {

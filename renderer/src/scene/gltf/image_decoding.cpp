@@ -12,6 +12,7 @@
 
 #include "lgh/error.hpp"
 #include "lgh/image.hpp"
+#include "scene/dds_file.hpp"
 #include "scene/gltf/load_context.hpp"
 #include "scene/gltf/webp_decoding.hpp"
 
@@ -62,6 +63,7 @@ std::optional<std::pair<std::uint32_t, std::uint32_t>> sniffImageSize(const std:
   }
   if (size >= 4 && bytes[0] == 0xFF && bytes[1] == 0xD8) return jpegSize(bytes, size);
   if (isWebp(bytes, size)) return webpSize(bytes, size);
+  if (isDds(bytes, size)) return ddsSize(bytes, size);
   return std::nullopt;
 }
 
@@ -121,7 +123,25 @@ bool loadImageCallback(tinygltf::Image* image, const int index, std::string*, st
   const std::string what = imageLabel(*image, index);
   try {
     if (size <= 0) invalid(ctx, fmt::format("{} has no data", what));
-    Image8 decoded = decodeTexture(ctx, bytes, static_cast<std::size_t>(size), what);
+    const auto length = static_cast<std::size_t>(size);
+    if (isDds(bytes, length)) {
+      // MSFT_texture_dds: the blocks go to the GPU as they are; the CPU keeps them decoded.
+      if (const auto header = ddsSize(bytes, length)) {
+        checkTextureSize(ctx, header->first, header->second, what);
+      }
+      BlockCompressedImage blocks = readDds(bytes, length, what);
+      Image8 decoded =
+          decodeBlocks(blocks.format, blocks.width, blocks.height, blocks.levels.front().data());
+      image->width = decoded.width;
+      image->height = decoded.height;
+      image->component = 4;
+      image->bits = 8;
+      image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+      ctx.images.insert_or_assign(index, std::move(decoded));
+      ctx.blockImages.insert_or_assign(index, std::move(blocks));
+      return true;
+    }
+    Image8 decoded = decodeTexture(ctx, bytes, length, what);
     image->width = decoded.width;
     image->height = decoded.height;
     image->component = 4;

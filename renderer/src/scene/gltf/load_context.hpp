@@ -14,6 +14,7 @@
 
 #include "lgh/error.hpp"
 #include "lgh/image.hpp"
+#include "scene/block_compression.hpp"
 #include "scene/gltf/gltf_loader.hpp"
 
 namespace lgh::gltf {
@@ -31,11 +32,12 @@ struct LoadContext {
   // Directory, Memory: the model's folder, relative (to root / to the upload)
   std::filesystem::path baseDir;
   std::map<std::string, const std::vector<std::uint8_t>*> memoryFiles;  // normalised name
-  std::optional<Error> fatal;               // a sandbox violation: always fails the load
-  std::map<std::string, Error> fileErrors;  // missing / too large side files, by URI
-  std::map<int, Image8> images;             // decoded, by glTF image index
-  std::map<int, Error> imageErrors;         // decode failures, by glTF image index
-  std::size_t decodedTextureBytes = 0;      // of all images decoded so far
+  std::optional<Error> fatal;                       // a sandbox violation: always fails the load
+  std::map<std::string, Error> fileErrors;          // missing / too large side files, by URI
+  std::map<int, Image8> images;                     // decoded, by glTF image index
+  std::map<int, BlockCompressedImage> blockImages;  // DDS blocks as loaded, by glTF image index
+  std::map<int, Error> imageErrors;                 // decode failures, by glTF image index
+  std::size_t decodedTextureBytes = 0;              // of all images decoded so far
   std::vector<std::string> warnings;
 
   void warnOnce(const std::string& warning) {

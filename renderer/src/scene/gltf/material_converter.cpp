@@ -77,6 +77,7 @@ Material MaterialConverter::convert(int index) {
   material.emissiveTexture = texture(source.emissiveTexture.index, source.emissiveTexture.texCoord,
                                      source.emissiveTexture.extensions, owner + "/emissiveTexture");
   readExtensions(source, owner, material);
+  applyExtras(source, index, owner, material);
   return material;
 }
 
@@ -103,6 +104,20 @@ void MaterialConverter::warnAboutUnusedFailures() {
   }
 }
 
+std::vector<TextureRef> MaterialConverter::allTextures() {
+  std::vector<TextureRef> textures;
+  textures.reserve(model_.textures.size());
+  for (std::size_t i = 0; i < model_.textures.size(); ++i) {
+    try {
+      textures.push_back(texture(static_cast<int>(i), 0, {},
+                                 label("texture", static_cast<int>(i), model_.textures[i].name)));
+    } catch (const Error&) {
+      textures.emplace_back();  // a material using it has failed the load already
+    }
+  }
+  return textures;
+}
+
 glm::vec3 MaterialConverter::emissive(const tinygltf::Material& source) const {
   glm::vec3 factor(0.0F);
   for (int c = 0; c < 3 && c < static_cast<int>(source.emissiveFactor.size()); ++c) {
@@ -127,6 +142,11 @@ AlphaMode MaterialConverter::alphaMode(const std::string& mode, const std::strin
 }
 
 int MaterialConverter::textureImage(const tinygltf::Texture& texture) const {
+  const auto dds = texture.extensions.find("MSFT_texture_dds");
+  if (dds != texture.extensions.end() && dds->second.Has("source") &&
+      dds->second.Get("source").IsInt()) {
+    return dds->second.Get("source").GetNumberAsInt();
+  }
   const auto webp = texture.extensions.find("EXT_texture_webp");
   if (webp != texture.extensions.end() && webp->second.Has("source") &&
       webp->second.Get("source").IsInt()) {
@@ -200,6 +220,10 @@ int MaterialConverter::sceneImage(int index) {
   scene_.images.push_back(std::move(decoded->second));
   ctx_.images.erase(decoded);
   const int sceneIndex = static_cast<int>(scene_.images.size()) - 1;
+  if (const auto blocks = ctx_.blockImages.find(index); blocks != ctx_.blockImages.end()) {
+    scene_.compressedImages.emplace(sceneIndex, std::move(blocks->second));
+    ctx_.blockImages.erase(blocks);
+  }
   imageRemap_.emplace(index, sceneIndex);
   return sceneIndex;
 }

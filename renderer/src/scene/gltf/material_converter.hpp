@@ -37,6 +37,10 @@ class MaterialConverter {
   // Images that failed to load but that no material used: dropped, with a warning.
   void warnAboutUnusedFailures();
 
+  // Scene::textures: every glTF texture (image and sampler) on TEXCOORD_0, for material
+  // parameters that name textures by index; an entry whose image failed stays invalid.
+  std::vector<TextureRef> allTextures();
+
  private:
   // emissiveFactor, times KHR_materials_emissive_strength's emissiveStrength when present.
   glm::vec3 emissive(const tinygltf::Material& source) const;
@@ -46,12 +50,18 @@ class MaterialConverter {
   TextureRef texture(int textureIndex, int texCoord, const tinygltf::ExtensionMap& extensions,
                      const std::string& owner);
 
-  // The image a texture samples: EXT_texture_webp's source where given, else `source`; -1 none.
+  // The image a texture samples: MSFT_texture_dds's or EXT_texture_webp's source where given,
+  // else `source`; -1 none.
   int textureImage(const tinygltf::Texture& texture) const;
 
   // KHR_materials_* (clearcoat, sheen, specular, ior, transmission, volume, unlit).
   void readExtensions(const tinygltf::Material& source, const std::string& owner,
                       Material& material);
+
+  // extras.lgh: the lecture's models and techniques, as a request's material parameters
+  // (material_extras.cpp). Textures name glTF textures.
+  void applyExtras(const tinygltf::Material& source, int index, const std::string& owner,
+                   Material& material);
 
   Sampler sampler(int index, const std::string& owner) const;
 

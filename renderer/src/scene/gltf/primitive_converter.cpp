@@ -358,6 +358,22 @@ void PrimitiveConverter::finishNormals(Primitive& primitive, bool hasNormals,
   }
 }
 
+// extras.lgh (material_extras.cpp) may give a normal or height map: parallax and relief mapping
+// need the tangent frame too. The UV set of the first one given, or -1.
+int PrimitiveConverter::extrasTangentUvSet(const tinygltf::Material& source) {
+  if (!source.extras.IsObject() || !source.extras.Has("lgh")) return -1;
+  const tinygltf::Value& parameters = source.extras.Get("lgh");
+  if (!parameters.IsObject()) return -1;
+  for (const char* key : {"normal_texture", "height_texture"}) {
+    if (!parameters.Has(key) || !parameters.Get(key).IsObject()) continue;
+    const tinygltf::Value& info = parameters.Get(key);
+    return info.Has("tex_coord") && info.Get("tex_coord").IsInt()
+               ? info.Get("tex_coord").GetNumberAsInt()
+               : 0;
+  }
+  return -1;
+}
+
 int PrimitiveConverter::tangentUvSet(int material) const {
   if (material < 0) return -1;
   const tinygltf::Material& source = model_.materials[static_cast<std::size_t>(material)];
@@ -371,13 +387,17 @@ int PrimitiveConverter::tangentUvSet(int material) const {
                    ? info.Get("texCoord").GetNumberAsInt()
                    : 0;
   }
+  if (texCoord < 0) texCoord = extrasTangentUvSet(source);
   if (texCoord < 0) return -1;
   return texCoord == 1 ? 1 : 0;
 }
 
 void PrimitiveConverter::finishTangents(Primitive& primitive, bool hasTangents, int uvSet,
                                         const std::string& owner) const {
-  if (hasTangents && normalizeGivenTangents(primitive)) return;
+  if (hasTangents && normalizeGivenTangents(primitive)) {
+    primitive.tangents = true;
+    return;
+  }
   if (hasTangents) {
     ctx_.warnings.push_back(
         fmt::format("{}: TANGENT has zero, non-finite or non-unit-w values; regenerated", owner));
@@ -386,6 +406,7 @@ void PrimitiveConverter::finishTangents(Primitive& primitive, bool hasTangents, 
   // stays), and MikkTSpace is the most expensive step of a load.
   if (uvSet >= 0) {
     generateMikkTSpaceTangents(primitive, uvSet);
+    primitive.tangents = true;
     return;
   }
   for (Vertex& vertex : primitive.vertices) {

@@ -79,8 +79,10 @@ class PrimitiveConverter {
 
   void finishNormals(Primitive& primitive, bool hasNormals, const std::string& owner) const;
 
-  // The UV set the material's normal map (or clearcoat normal map) uses; -1 without one.
+  // The UV set the material's normal map (or clearcoat normal map, or extras.lgh's normal or
+  // height map) uses; -1 without one.
   int tangentUvSet(int material) const;
+  static int extrasTangentUvSet(const tinygltf::Material& source);
   bool hasClearcoatNormalTexture(int material) const;
 
   void finishTangents(Primitive& primitive, bool hasTangents, int uvSet,

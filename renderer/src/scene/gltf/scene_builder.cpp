@@ -113,6 +113,7 @@ class SceneBuilder {
     for (std::size_t i = 0; i < model_.materials.size(); ++i) {
       scene_.materials.push_back(materials_.convert(static_cast<int>(i)));
     }
+    scene_.textures = materials_.allTextures();
     materials_.warnAboutUnusedFailures();
     scene_.computeBounds();
     if (!empty) checkBounds();

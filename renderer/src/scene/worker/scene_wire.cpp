@@ -158,15 +158,28 @@ class Reader {
 // Every texture of a material, in one order for writing, reading and checking.
 template <typename M>
 auto texturesOf(M& m) {
-  return std::array{
-      &m.baseColorTexture,           &m.metallicRoughnessTexture, &m.normalTexture,
-      &m.occlusionTexture,           &m.emissiveTexture,          &m.clearcoat.texture,
-      &m.clearcoat.roughnessTexture, &m.clearcoat.normalTexture,  &m.sheen.colorTexture,
-      &m.sheen.roughnessTexture,     &m.specular.texture,         &m.specular.colorTexture,
-      &m.transmission.texture};
+  return std::array{&m.baseColorTexture,
+                    &m.metallicRoughnessTexture,
+                    &m.normalTexture,
+                    &m.occlusionTexture,
+                    &m.emissiveTexture,
+                    &m.clearcoat.texture,
+                    &m.clearcoat.roughnessTexture,
+                    &m.clearcoat.normalTexture,
+                    &m.sheen.colorTexture,
+                    &m.sheen.roughnessTexture,
+                    &m.specular.texture,
+                    &m.specular.colorTexture,
+                    &m.transmission.texture,
+                    &m.classic.specularTexture,
+                    &m.classic.shininessTexture,
+                    &m.surface.heightTexture,
+                    &m.lightMap};
 }
+// The shader's slots 10 and 11 hold either KHR_materials_specular's two textures or the classic
+// models' two (scene.hpp, materialTextureSlots): the messages carry all four.
 static_assert(std::tuple_size_v<decltype(texturesOf(std::declval<Material&>()))> ==
-                  kMaterialTextureSlots,
+                  kMaterialTextureSlots + 2,
               "a Material texture the worker's messages do not carry");
 
 template <typename Out>
@@ -204,6 +217,60 @@ void writeLayers(Out& out, const Material& m) {
   out.pod(m.transmission.attenuationDistance);
 }
 
+// The classic models' and the surface detail's numbers, the light map's strength, bicubic.
+template <typename Out>
+void writeLectureParameters(Out& out, const Material& m) {
+  const ClassicMaterial& c = m.classic;
+  out.pod(c.ambient.has_value());
+  out.pod(c.ambient.value_or(glm::vec3(0.0F)));
+  out.pod(c.specular);
+  out.pod(c.shininess);
+  out.pod(c.sigma);
+  out.pod(c.m);
+  out.pod(c.f0);
+  out.pod(c.shading);
+  const SurfaceDetailMaterial& d = m.surface;
+  out.pod(d.technique);
+  out.pod(d.heightScale);
+  out.pod(d.parallaxBias.has_value());
+  out.pod(d.parallaxBias.value_or(0.0F));
+  out.pod(d.reliefLinearSteps);
+  out.pod(d.reliefBinarySteps);
+  out.pod(d.reliefSelfShadow);
+  out.pod(d.reliefSilhouettes);
+  out.pod(d.tessellationPixels);
+  out.pod(d.tessellationMaxLevel);
+  out.pod(m.lightMapStrength);
+  out.pod(m.bicubic);
+}
+
+void readLectureParameters(Reader& in, Material& m) {
+  ClassicMaterial& c = m.classic;
+  const bool hasAmbient = in.flag();
+  const auto ambient = in.pod<glm::vec3>();
+  if (hasAmbient) c.ambient = ambient;
+  c.specular = in.pod<glm::vec3>();
+  c.shininess = in.pod<float>();
+  c.sigma = in.pod<float>();
+  c.m = in.pod<float>();
+  c.f0 = in.pod<glm::vec3>();
+  c.shading = in.pod<ShadingMode>();
+  SurfaceDetailMaterial& d = m.surface;
+  d.technique = in.pod<SurfaceDetail>();
+  d.heightScale = in.pod<float>();
+  const bool hasBias = in.flag();
+  const auto bias = in.pod<float>();
+  if (hasBias) d.parallaxBias = bias;
+  d.reliefLinearSteps = in.pod<int>();
+  d.reliefBinarySteps = in.pod<int>();
+  d.reliefSelfShadow = in.flag();
+  d.reliefSilhouettes = in.flag();
+  d.tessellationPixels = in.pod<float>();
+  d.tessellationMaxLevel = in.pod<int>();
+  m.lightMapStrength = in.pod<float>();
+  m.bicubic = in.flag();
+}
+
 void readLayers(Reader& in, Material& m) {
   m.model = in.pod<MaterialModel>();
   m.clearcoat.factor = in.pod<float>();
@@ -233,6 +300,7 @@ void writeMaterial(Out& out, const Material& m) {
   out.pod(m.alphaCutoff);
   out.pod(m.doubleSided);
   writeLayers(out, m);
+  writeLectureParameters(out, m);
   for (const TextureRef* texture : texturesOf(m)) writeTexture(out, *texture);
 }
 
@@ -249,6 +317,7 @@ Material readMaterial(Reader& in) {
   m.alphaCutoff = in.pod<float>();
   m.doubleSided = in.flag();
   readLayers(in, m);
+  readLectureParameters(in, m);
   for (TextureRef* texture : texturesOf(m)) *texture = readTexture(in);
   return m;
 }
@@ -289,6 +358,7 @@ void writePrimitives(Out& out, const std::vector<Primitive>& primitives) {
     out.pod(primitive.material);
     out.pod(primitive.topology);
     out.pod(primitive.unlit);
+    out.pod(primitive.tangents);
   }
 }
 
@@ -300,6 +370,7 @@ std::vector<Primitive> readPrimitives(Reader& in) {
     primitive.material = in.pod<int>();
     primitive.topology = in.pod<Topology>();
     primitive.unlit = in.flag();
+    primitive.tangents = in.flag();
   }
   return primitives;
 }
@@ -323,6 +394,18 @@ void writeScene(Out& out, const Scene& scene) {
     out.pod(image.channels);
     out.pods(image.pixels);
   }
+  out.size(scene.compressedImages.size());
+  for (const auto& [index, blocks] : scene.compressedImages) {
+    out.pod(index);
+    out.pod(blocks.format);
+    out.pod(blocks.srgb);
+    out.pod(blocks.width);
+    out.pod(blocks.height);
+    out.size(blocks.levels.size());
+    for (const std::vector<std::uint8_t>& level : blocks.levels) out.pods(level);
+  }
+  out.size(scene.textures.size());
+  for (const TextureRef& texture : scene.textures) writeTexture(out, texture);
   out.pods(scene.lights);
   out.size(scene.cameras.size());
   for (const SceneCamera& camera : scene.cameras) writeCamera(out, camera);
@@ -350,6 +433,23 @@ Scene readScene(Reader& in) {
     image.channels = in.pod<int>();
     image.pixels = in.pods<std::uint8_t>();
   }
+  const std::size_t compressed = in.count(8);
+  for (std::size_t i = 0; i < compressed; ++i) {
+    const auto index = in.pod<int>();
+    BlockCompressedImage blocks;
+    blocks.format = in.pod<BlockFormat>();
+    blocks.srgb = in.flag();
+    blocks.width = in.pod<int>();
+    blocks.height = in.pod<int>();
+    blocks.levels.resize(in.count(8));
+    for (std::vector<std::uint8_t>& level : blocks.levels) level = in.pods<std::uint8_t>();
+    if (!scene.compressedImages.emplace(index, std::move(blocks)).second) {
+      throw Error(ErrorCode::Internal,
+                  "the scene parser worker sent a malformed message: an image compressed twice");
+    }
+  }
+  scene.textures.resize(in.count(8));
+  for (TextureRef& texture : scene.textures) texture = readTexture(in);
   scene.lights = in.pods<LightDesc>();
   scene.cameras.resize(in.count(8));
   for (SceneCamera& camera : scene.cameras) camera = readCamera(in);
@@ -357,6 +457,31 @@ Scene readScene(Reader& in) {
   scene.warnings.resize(in.count(8));
   for (std::string& warning : scene.warnings) warning = in.text();
   return scene;
+}
+
+// A DDS payload is uploaded as it is: its format must be one GL knows, its size the decoded
+// image's, and every level exactly as long as its blocks (the upload reads that many bytes).
+template <typename Bad>
+void checkBlocks(const Scene& scene, int index, const BlockCompressedImage& blocks, Bad bad) {
+  if (index < 0 || static_cast<std::size_t>(index) >= scene.images.size()) {
+    bad("a compressed image's index");
+  }
+  if (blocks.format > BlockFormat::Bc5) bad("a compressed image's block format");
+  const Image8& image = scene.images[static_cast<std::size_t>(index)];
+  if (blocks.width != image.width || blocks.height != image.height) {
+    bad("a compressed image's size");
+  }
+  // A full chain down to 1x1 has at most 32 levels of an int's size.
+  if (blocks.levels.empty() || blocks.levels.size() > 32) bad("a compressed image's level count");
+  int width = blocks.width;
+  int height = blocks.height;
+  for (const std::vector<std::uint8_t>& level : blocks.levels) {
+    if (level.size() != blockLevelBytes(blocks.format, width, height)) {
+      bad("a compressed image level's byte count");
+    }
+    width = std::max(width / 2, 1);
+    height = std::max(height / 2, 1);
+  }
 }
 
 // The daemon's renderer indexes these: a worker must not be able to make it read out of range.
@@ -393,9 +518,22 @@ void checkIndices(const Scene& scene) {
       }
     }
   }
+  const auto known = [](auto value) {
+    return std::any_of(EnumNames<decltype(value)>::names.begin(),
+                       EnumNames<decltype(value)>::names.end(),
+                       [&](const auto& entry) { return entry.value == value; });
+  };
   for (const Material& m : scene.materials) {
-    if (m.model != MaterialModel::MetallicRoughness && m.model != MaterialModel::Unlit) {
-      bad("a material model");
+    if (!known(m.model)) bad("a material model");
+    if (!known(m.classic.shading)) bad("a classic material's shading");
+    if (!known(m.surface.technique)) bad("a surface detail technique");
+    // The shader loops this often per pixel and tessellates this finely (the request schema's
+    // ranges, proto/material-parameters.schema.json).
+    const SurfaceDetailMaterial& d = m.surface;
+    if (d.reliefLinearSteps < 1 || d.reliefLinearSteps > 256 || d.reliefBinarySteps < 0 ||
+        d.reliefBinarySteps > 16 || d.tessellationMaxLevel < 1 || d.tessellationMaxLevel > 64 ||
+        !(d.tessellationPixels >= 1.0F && d.tessellationPixels <= 1024.0F)) {
+      bad("a surface detail's step or tessellation count");
     }
     if (m.alphaMode != AlphaMode::Opaque && m.alphaMode != AlphaMode::Mask &&
         m.alphaMode != AlphaMode::Blend) {
@@ -410,6 +548,12 @@ void checkIndices(const Scene& scene) {
                           static_cast<std::uint64_t>(std::max(image.height, 0)) *
                           static_cast<std::uint64_t>(std::max(image.channels, 0));
     if (image.width <= 0 || image.height <= 0 || expected != image.pixels.size()) bad("an image");
+  }
+  for (const TextureRef& texture : scene.textures) {
+    if (texture.image >= static_cast<int>(scene.images.size())) bad("a texture's image");
+  }
+  for (const auto& [index, blocks] : scene.compressedImages) {
+    checkBlocks(scene, index, blocks, bad);
   }
 }
 
@@ -437,6 +581,7 @@ Encoded encodeJob(const LoadJob& job) {
     out.pod(options.animation.value_or(SceneAnimation{}));
     out.text(options.materialVariant);
     out.pod(options.ignoreUnsupportedExtensions);
+    out.pod(options.textureCompression);
   });
 }
 
@@ -462,6 +607,12 @@ LoadJob decodeJob(std::span<const std::uint8_t> bytes) {
   if (animated) options.animation = animation;
   options.materialVariant = in.text();
   options.ignoreUnsupportedExtensions = in.flag();
+  options.textureCompression = in.pod<TextureCompression>();
+  if (options.textureCompression != TextureCompression::None &&
+      options.textureCompression != TextureCompression::Bc) {
+    throw Error(ErrorCode::Internal,
+                "the scene parser worker got a malformed job: an unknown texture compression");
+  }
   in.finish();
   return job;
 }

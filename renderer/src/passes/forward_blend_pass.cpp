@@ -1,0 +1,87 @@
+#include "passes/forward_blend_pass.hpp"
+
+#include <algorithm>
+#include <set>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/slots.hpp"
+#include "lgh/error.hpp"
+
+namespace lgh {
+
+bool ForwardBlendPass::needed(const MaterialTable& materials, const GpuScene& gpuScene) {
+  return std::any_of(gpuScene.drawItems().begin(), gpuScene.drawItems().end(),
+                     [&](const GpuScene::DrawItem& item) {
+                       return materials.at(item.material).alphaMode == AlphaMode::Blend;
+                     });
+}
+
+void ForwardBlendPass::bindTargets(FrameTargets& targets) {
+  targets.sceneLinear();
+  if (boundColor_ == targets.scene.texture.id() && boundDepth_ == targets.gbuffer.depth.id() &&
+      boundWidth_ == targets.width && boundHeight_ == targets.height) {
+    return;
+  }
+  framebuffer_ = gl::Framebuffer();
+  glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, targets.scene.texture.id(), 0);
+  glNamedFramebufferTexture(framebuffer_.id(), GL_DEPTH_ATTACHMENT, targets.gbuffer.depth.id(), 0);
+  const GLenum status = glCheckNamedFramebufferStatus(framebuffer_.id(), GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    throw Error(ErrorCode::Internal,
+                "framebuffer incomplete (status " + std::to_string(status) + ")", "forward blend");
+  }
+  boundColor_ = targets.scene.texture.id();
+  boundDepth_ = targets.gbuffer.depth.id();
+  boundWidth_ = targets.width;
+  boundHeight_ = targets.height;
+}
+
+int ForwardBlendPass::run(const Inputs& inputs, SurfacePrograms& programs, GpuScene& gpuScene,
+                          FrameTargets& targets) {
+  std::vector<const GpuScene::DrawItem*> items;
+  for (const auto& item : gpuScene.drawItems()) {
+    if (inputs.materials->at(item.material).alphaMode == AlphaMode::Blend) items.push_back(&item);
+  }
+  const glm::vec3 eye = inputs.camera->position;
+  std::stable_sort(items.begin(), items.end(), [&](const auto* a, const auto* b) {
+    return glm::distance(a->center, eye) > glm::distance(b->center, eye);
+  });
+  bindTargets(targets);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  glViewport(0, 0, targets.width, targets.height);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glCullFace(GL_BACK);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_LIGHTS, inputs.lights);
+  const SurfaceFrame frame{
+      inputs.camera,  inputs.primitives,          targets.width, targets.height, inputs.lightCount,
+      inputs.ambient, inputs.maxTessellationLevel};
+  const bool disk = inputs.primitives->pointShape == PointShape::Disk;
+  std::set<GLuint> prepared;
+  for (const GpuScene::DrawItem* item : items) {
+    const Material& material = inputs.materials->at(item->material);
+    const SurfaceProgramKey key = surfaceProgramKey(material, *item, true);
+    const GLuint program = programs.get(key);
+    if (prepared.insert(program).second) {
+      setSurfaceFrameUniforms(program, frame, item->topology == Topology::Points && disk);
+    }
+    glUseProgram(program);
+    bindMaterial(program, material, gpuScene, item->unlit);
+    drawSurface(program, *item, material, key.displaced);
+  }
+  glBindVertexArray(0);
+  glFrontFace(GL_CCW);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_DEPTH_TEST);
+  unbindMaterialSamplers();
+  return static_cast<int>(items.size());
+}
+
+}  // namespace lgh

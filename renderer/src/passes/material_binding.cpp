@@ -1,0 +1,202 @@
+#include "passes/material_binding.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace lgh {
+namespace {
+
+// MATERIAL_LAYER_* bits of glsl/include/material_models.glsl.
+GLuint materialLayers(const Material& m) {
+  GLuint layers = 0;
+  if (m.clearcoat.factor > 0.0F) layers |= 1U;
+  if (m.sheen.colorFactor != glm::vec3(0.0F)) layers |= 2U;
+  const bool specular = m.specular.factor != 1.0F || m.specular.colorFactor != glm::vec3(1.0F) ||
+                        m.specular.ior != 1.5F || m.specular.texture.valid() ||
+                        m.specular.colorTexture.valid();
+  if (specular) layers |= 4U;
+  if (m.transmission.factor > 0.0F) layers |= 8U;
+  return layers;
+}
+
+// KHR_materials_ior: F0 of the dielectric base; ior 0 means F0 = 1.
+float dielectricF0(float ior) {
+  if (ior == 0.0F) return 1.0F;
+  const float r = (ior - 1.0F) / (ior + 1.0F);
+  return r * r;
+}
+
+bool displacedMaterial(const Material& material) {
+  return material.surface.technique == SurfaceDetail::Displacement &&
+         material.surface.heightTexture.valid();
+}
+
+// The classic model's exponent and specular colour (Cook-Torrance: F0).
+float modelExponent(const Material& m, MaterialModel model) {
+  switch (model) {
+    case MaterialModel::OrenNayar:
+      return m.classic.sigma;
+    case MaterialModel::CookTorrance:
+      return m.classic.m;
+    default:
+      return m.classic.shininess;
+  }
+}
+
+glm::vec3 modelSpecular(const Material& m, MaterialModel model) {
+  return model == MaterialModel::CookTorrance ? m.classic.f0 : m.classic.specular;
+}
+
+class Uniforms {
+ public:
+  explicit Uniforms(GLuint program) : program_(program) {}
+  GLint at(const char* name) const { return glGetUniformLocation(program_, name); }
+  void set(const char* name, float v) const { glProgramUniform1f(program_, at(name), v); }
+  void set(const char* name, int v) const { glProgramUniform1i(program_, at(name), v); }
+  void set(const char* name, GLuint v) const { glProgramUniform1ui(program_, at(name), v); }
+  void set(const char* name, bool v) const { glProgramUniform1i(program_, at(name), v ? 1 : 0); }
+  void set(const char* name, const glm::vec3& v) const {
+    glProgramUniform3fv(program_, at(name), 1, glm::value_ptr(v));
+  }
+  void set(const char* name, const glm::vec4& v) const {
+    glProgramUniform4fv(program_, at(name), 1, glm::value_ptr(v));
+  }
+
+ private:
+  GLuint program_;
+};
+
+void bindTextures(const Uniforms& u, GLuint program, const Material& material, GpuScene& gpu) {
+  GLuint textureMask = 0;
+  GLuint texCoord1Mask = 0;
+  GLuint twoChannelMask = 0;
+  std::array<glm::mat3x2, kMaterialTextureSlots> transforms{};
+  const auto slots = materialTextureSlots(material);
+  for (GLuint slot = 0; slot < slots.size(); ++slot) {
+    const TextureRef& ref = *slots[slot].texture;
+    const GpuScene::BoundTexture bound = gpu.texture(ref, slots[slot].usage);
+    glBindTextureUnit(slot, bound.texture);
+    glBindSampler(slot, bound.sampler);
+    if (bound.texture != 0) textureMask |= 1U << slot;
+    if (bound.twoChannel) twoChannelMask |= 1U << slot;
+    if (ref.texCoord == 1) texCoord1Mask |= 1U << slot;
+    transforms[slot] = ref.transform.matrix();
+  }
+  u.set("uTextureMask", textureMask);
+  u.set("uTexCoord1Mask", texCoord1Mask);
+  u.set("uTwoChannelMask", twoChannelMask);
+  glProgramUniformMatrix3x2fv(program, u.at("uUvTransform"),
+                              static_cast<GLsizei>(transforms.size()), GL_FALSE,
+                              glm::value_ptr(transforms[0]));
+}
+
+void setSurfaceDetail(const Uniforms& u, const SurfaceDetailMaterial& s) {
+  u.set("uSurface", static_cast<GLuint>(s.technique));
+  u.set("uHeightScale", s.heightScale);
+  u.set("uParallaxBias", s.parallaxBias.value_or(s.heightScale * 0.5F));
+  u.set("uReliefLinearSteps", s.reliefLinearSteps);
+  u.set("uReliefBinarySteps", s.reliefBinarySteps);
+  u.set("uReliefSelfShadow", s.reliefSelfShadow);
+  u.set("uReliefSilhouettes", s.reliefSilhouettes);
+  u.set("uTessellationPixels", s.tessellationPixels);
+}
+
+}  // namespace
+
+MaterialModel effectiveModel(const Material& material, bool unlit) {
+  return unlit ? MaterialModel::Unlit : material.model;
+}
+
+SurfaceProgramKey surfaceProgramKey(const Material& material, const GpuScene::DrawItem& item,
+                                    bool forward) {
+  SurfaceProgramKey key;
+  key.topology = item.topology;
+  key.forward = forward;
+  if (item.topology != Topology::Triangles) return key;
+  if (isClassicModel(effectiveModel(material, item.unlit))) key.shading = material.classic.shading;
+  key.displaced = displacedMaterial(material);
+  return key;
+}
+
+void bindMaterial(GLuint program, const Material& material, GpuScene& gpuScene, bool unlit) {
+  const Uniforms u(program);
+  bindTextures(u, program, material, gpuScene);
+  const MaterialModel model = effectiveModel(material, unlit);
+  u.set("uBaseColorFactor", material.baseColorFactor);
+  u.set("uMetallicFactor", material.metallicFactor);
+  u.set("uRoughnessFactor", material.roughnessFactor);
+  u.set("uEmissiveFactor", material.emissiveFactor);
+  u.set("uNormalScale", material.normalScale);
+  u.set("uOcclusionStrength", material.occlusionStrength);
+  u.set("uAlphaCutoff", material.alphaMode == AlphaMode::Mask ? material.alphaCutoff : -1.0F);
+  u.set("uModel", static_cast<GLuint>(model));
+  u.set("uLayers", model == MaterialModel::MetallicRoughness ? materialLayers(material) : 0U);
+  const Clearcoat& cc = material.clearcoat;
+  u.set("uClearcoat", glm::vec3(cc.factor, cc.roughness, cc.normalScale));
+  u.set("uSheen", glm::vec4(material.sheen.colorFactor, material.sheen.roughnessFactor));
+  u.set("uSpecular", glm::vec4(material.specular.colorFactor, material.specular.factor));
+  u.set("uDielectricF0", dielectricF0(material.specular.ior));
+  u.set("uTransmission", material.transmission.factor);
+  u.set("uTransmissionTint", material.transmission.tint());
+  u.set("uAmbientColor", material.classic.ambient.value_or(glm::vec3(0.0F)));
+  u.set("uAmbientIsDiffuse", !material.classic.ambient.has_value());
+  u.set("uSpecularColor", modelSpecular(material, model));
+  u.set("uExponent", modelExponent(material, model));
+  u.set("uShading",
+        static_cast<GLuint>(isClassicModel(model) ? material.classic.shading : ShadingMode::Pixel));
+  u.set("uBicubic", material.bicubic);
+  u.set("uLightMapStrength", material.lightMapStrength);
+  setSurfaceDetail(u, material.surface);
+}
+
+void setSurfaceFrameUniforms(GLuint program, const SurfaceFrame& frame, bool pointDisk) {
+  const Uniforms u(program);
+  glProgramUniformMatrix4fv(program, u.at("uViewProjection"), 1, GL_FALSE,
+                            glm::value_ptr(frame.camera->viewProjection()));
+  u.set("uCameraPosition", frame.camera->position);
+  glProgramUniform2f(program, u.at("uViewportSize"), static_cast<float>(frame.width),
+                     static_cast<float>(frame.height));
+  u.set("uLineWidth", frame.primitives->lineWidth);
+  u.set("uPointSize", frame.primitives->pointSize);
+  u.set("uPointDisk", pointDisk);
+  u.set("uLightCount", frame.lightCount);
+  u.set("uAmbient", frame.ambient);
+  u.set("uTessellationMaxLevel", frame.maxTessellationLevel);
+}
+
+void drawSurface(GLuint program, const GpuScene::DrawItem& item, const Material& material,
+                 bool displaced) {
+  // Widened lines and points are quads of either winding: never culled.
+  const bool cull = item.topology == Topology::Triangles && !material.doubleSided;
+  if (cull) {
+    glEnable(GL_CULL_FACE);
+  } else {
+    glDisable(GL_CULL_FACE);
+  }
+  // Mirrored instances flip the winding; keep back-face culling right for them.
+  glFrontFace(glm::determinant(glm::mat3(item.world)) < 0.0F ? GL_CW : GL_CCW);
+  const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(item.world));
+  glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "uWorld"), 1, GL_FALSE,
+                            glm::value_ptr(item.world));
+  glProgramUniformMatrix3fv(program, glGetUniformLocation(program, "uNormalMatrix"), 1, GL_FALSE,
+                            glm::value_ptr(normalMatrix));
+  glProgramUniform1i(program, glGetUniformLocation(program, "uHasTangents"), item.tangents ? 1 : 0);
+  glBindVertexArray(item.vertexArray);
+  GLenum mode = GL_TRIANGLES;
+  if (item.topology == Topology::Lines) mode = GL_LINES;
+  if (item.topology == Topology::Points) mode = GL_POINTS;
+  if (displaced) {
+    glPatchParameteri(GL_PATCH_VERTICES, 3);
+    mode = GL_PATCHES;
+  }
+  glDrawElements(mode, item.indexCount, GL_UNSIGNED_INT, nullptr);
+}
+
+void unbindMaterialSamplers() {
+  for (GLuint slot = 0; slot < kMaterialTextureSlots; ++slot) glBindSampler(slot, 0);
+}
+
+}  // namespace lgh

@@ -1,0 +1,44 @@
+// Drawing scene surfaces with their materials, shared by the G-buffer pass and the forward pass of
+// blended surfaces: which program variant a material needs, its uniforms and textures (the
+// uniforms of glsl/include/material_sampling.glsl, texture unit = slot), the frame's uniforms and
+// one draw call.
+#pragma once
+
+#include "lgh/request.hpp"
+#include "passes/surface_programs.hpp"
+#include "scene/camera.hpp"
+#include "scene/gpu_scene.hpp"
+
+namespace lgh {
+
+// The model a draw shades with: lines and points without normals are unlit whatever their
+// material says.
+MaterialModel effectiveModel(const Material& material, bool unlit);
+
+SurfaceProgramKey surfaceProgramKey(const Material& material, const GpuScene::DrawItem& item,
+                                    bool forward);
+
+// Sets every material uniform of `program` and binds the material's textures and samplers.
+void bindMaterial(GLuint program, const Material& material, GpuScene& gpuScene, bool unlit);
+
+// What every surface program of a frame shares.
+struct SurfaceFrame {
+  const CameraMatrices* camera = nullptr;
+  const PrimitiveSettings* primitives = nullptr;
+  int width = 0;
+  int height = 0;
+  int lightCount = 0;
+  float ambient = 0.0F;
+  float maxTessellationLevel = 64.0F;  // the device's GL_MAX_TESS_GEN_LEVEL
+};
+void setSurfaceFrameUniforms(GLuint program, const SurfaceFrame& frame, bool pointDisk);
+
+// One draw item: its transforms, face culling (double-sided materials and lines and points are
+// not culled), and the draw call (GL_PATCHES when displaced).
+void drawSurface(GLuint program, const GpuScene::DrawItem& item, const Material& material,
+                 bool displaced);
+
+// Unbinds the samplers of the material slots.
+void unbindMaterialSamplers();
+
+}  // namespace lgh

@@ -1,0 +1,40 @@
+// The programs that draw scene surfaces (the G-buffer pass and the forward pass of blended
+// surfaces), one per combination of
+//   topology  triangles; lines and points through gbuffer_lines.geom / gbuffer_points.geom
+//   shading   pixel; Gouraud (gbuffer.vert lights the vertices, LGH_GOURAUD); flat
+//             (gbuffer_flat.geom lights each triangle)
+//   displaced displacement mapping (gbuffer_displace.tesc/.tese, drawn as GL_PATCHES)
+//   forward   gbuffer.frag or forward_blend.frag
+// built on first use: most frames need two or three of them.
+#pragma once
+
+#include <map>
+#include <tuple>
+
+#include "gl/gl_objects.hpp"
+#include "lgh/material_settings.hpp"
+#include "scene/scene.hpp"
+
+namespace lgh {
+
+struct SurfaceProgramKey {
+  Topology topology = Topology::Triangles;
+  ShadingMode shading = ShadingMode::Pixel;
+  bool displaced = false;
+  bool forward = false;
+  bool operator<(const SurfaceProgramKey& other) const {
+    return std::tie(topology, shading, displaced, forward) <
+           std::tie(other.topology, other.shading, other.displaced, other.forward);
+  }
+};
+
+class SurfacePrograms {
+ public:
+  // Builds the variant on first use; throws lgh::Error(Internal) with the driver's log.
+  GLuint get(const SurfaceProgramKey& key);
+
+ private:
+  std::map<SurfaceProgramKey, gl::Program> programs_;
+};
+
+}  // namespace lgh

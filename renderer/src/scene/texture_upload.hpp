@@ -1,0 +1,47 @@
+// One scene image as a GL texture for one use (TextureUsage): RGBA8 as decoded, or block-
+// compressed - on upload (settings.texture_compression "bc": the driver compresses each level of
+// a mip chain built here, as the lecture's glTexImage2D with a GL_COMPRESSED_* internal format),
+// or as loaded (DDS, MSFT_texture_dds). GL cannot generate mip levels of a compressed texture
+// (glGenerateMipmap needs a renderable format), so compressed chains are built on the CPU with a
+// 2x2 box filter (sRGB colour averaged in linear light).
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "gl/gl_objects.hpp"
+#include "lgh/request.hpp"
+#include "scene/block_compression.hpp"
+#include "scene/scene.hpp"
+
+namespace lgh {
+
+struct UploadedTexture {
+  gl::Texture texture;
+  std::size_t bytes = 0;              // GPU bytes, every level (compressed: the driver's sizes)
+  std::size_t uncompressedBytes = 0;  // what the RGBA8 texture would take
+  bool compressed = false;
+  bool twoChannel = false;  // BC5 normal map: the shader rebuilds z
+  std::string format;       // "RGBA8", "SRGB8_ALPHA8", "BC1", "BC3 sRGB", ...
+};
+
+// What the device can do, asked once per scene upload.
+struct TextureCapabilities {
+  bool s3tc = false;      // BC1-BC3
+  bool s3tcSrgb = false;  // BC1-BC3 with sRGB decoding
+  static TextureCapabilities query();
+};
+
+// `precompressed` (may be null): the image's blocks as loaded. Throws lgh::Error(Internal) when
+// the driver refuses a compressed upload it claims to support. Warnings (a usage the blocks
+// cannot serve, a format the device lacks) go to `warnings`.
+UploadedTexture uploadTexture(const Image8& image, const BlockCompressedImage* precompressed,
+                              TextureUsage usage, TextureCompression compression,
+                              const TextureCapabilities& capabilities,
+                              std::vector<std::string>& warnings);
+
+// The mip chain of `image` below level 0, halving to 1 x 1 (2x2 box filter; `srgb`: averaged in
+// linear light).
+std::vector<Image8> buildMipChain(const Image8& image, bool srgb);
+
+}  // namespace lgh
