@@ -244,17 +244,15 @@ void RenderQueue::run() {
 
 bool RenderQueue::bringUpRenderer() {
   const auto start = Clock::now();
-  armWatchdog(start + kStartUpAllowance + options_.watchdog);
   if (!encoders_) encoders_ = std::make_unique<lgh::TaskPool>(options_.output.encoderCount());
   try {
+    const WatchdogScope watched(watchdog_.get(), start + kStartUpAllowance + options_.watchdog);
     auto renderer = std::make_unique<lgh::Renderer>(options_.renderer);
     const lgh::RenderResult selfTest = renderer->render(selfTestRequest());
     if (selfTest.encoded.empty()) throw internalError("the self-test render produced no image");
-    disarmWatchdog();
     std::lock_guard lock(mutex_);
     renderer_ = std::move(renderer);
   } catch (const std::exception& error) {
-    disarmWatchdog();
     {
       std::lock_guard lock(mutex_);
       state_ = State::Failed;
@@ -372,19 +370,17 @@ void RenderQueue::submitTicket(const std::shared_ptr<RenderJob>& job,
   if (!renderer_) return;
   ticket->markStarted();
   const auto start = Clock::now();
-  armWatchdog(job->startDeadline + options_.watchdog);
-  if (options_.testRenderDelay.count() > 0) std::this_thread::sleep_for(options_.testRenderDelay);
   try {
+    const WatchdogScope watched(watchdog_.get(), job->startDeadline + options_.watchdog);
+    if (options_.testRenderDelay.count() > 0) std::this_thread::sleep_for(options_.testRenderDelay);
     // The next scene is parsed while this one uploads and renders.
     if (next != nullptr) renderer_->prefetch(*next);
     renderer_->submit(ticket->request());
-    disarmWatchdog();
     submitted_.push_back({job, ticket, start, start, bytes});
     std::lock_guard lock(mutex_);
     ++framesOutstanding_;
     bytesOutstanding_ += bytes;
   } catch (const lgh::Error& error) {
-    disarmWatchdog();
     ticket->fail(fromLghError(error));
     metrics_.recordRender("error");
     // A GL failure may have broken the context, and a lost one (GPU reset) certainly has.
@@ -392,7 +388,6 @@ void RenderQueue::submitTicket(const std::shared_ptr<RenderJob>& job,
       recoverRenderer(error.what());
     }
   } catch (const std::exception& error) {
-    disarmWatchdog();
     ticket->fail(internalError(error.what()));
     metrics_.recordRender("error");
     recoverRenderer(error.what());
@@ -423,12 +418,11 @@ void RenderQueue::waitForFrameCapacity(std::size_t bytes) {
 bool RenderQueue::completeFrame(bool wait) {
   if (submitted_.empty() || !renderer_) return false;
   std::optional<lgh::RenderResult> result;
-  armWatchdog(submitted_.front().job->startDeadline + options_.watchdog);
   try {
+    const WatchdogScope watched(watchdog_.get(),
+                                submitted_.front().job->startDeadline + options_.watchdog);
     result = renderer_->finish(wait);
-    disarmWatchdog();
   } catch (const std::exception& error) {
-    disarmWatchdog();
     recoverRenderer(error.what());
     return false;
   }
@@ -519,14 +513,6 @@ void RenderQueue::settleFramesInFlight() {
 }
 
 // --- The watchdog -------------------------------------------------------------------------------
-
-void RenderQueue::armWatchdog(Clock::time_point hungAfter) {
-  if (watchdog_) watchdog_->arm(hungAfter);
-}
-
-void RenderQueue::disarmWatchdog() {
-  if (watchdog_) watchdog_->disarm();
-}
 
 // On the watchdog's thread, while the render thread is stuck: answer everyone, turn not ready and
 // have the process end (a context stuck in a driver call cannot be replaced in this process).

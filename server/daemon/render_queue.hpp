@@ -110,8 +110,6 @@ class RenderQueue {
   void endVulkanProbe();
   bool bringUpRenderer();
   void recoverRenderer(const std::string& reason);
-  void armWatchdog(Clock::time_point hungAfter);
-  void disarmWatchdog();
   void declareHung();
   std::shared_ptr<RenderJob> takeJob();
   void runJob(const std::shared_ptr<RenderJob>& job);

@@ -40,4 +40,20 @@ class RenderWatchdog {
   std::thread thread_;
 };
 
+// Keeps `watchdog` (none: no watchdog) armed for one piece of GL work, disarmed however it ends.
+class WatchdogScope {
+ public:
+  WatchdogScope(RenderWatchdog* watchdog, Clock::time_point hungAfter) : watchdog_(watchdog) {
+    if (watchdog_ != nullptr) watchdog_->arm(hungAfter);
+  }
+  ~WatchdogScope() {
+    if (watchdog_ != nullptr) watchdog_->disarm();
+  }
+  WatchdogScope(const WatchdogScope&) = delete;
+  WatchdogScope& operator=(const WatchdogScope&) = delete;
+
+ private:
+  RenderWatchdog* watchdog_;
+};
+
 }  // namespace lghd
