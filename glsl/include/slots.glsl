@@ -85,6 +85,10 @@
 #define LGH_SLOT_BIN_ACCUM 41  // binned S1: one group per (tile, chunk) work item
 #define LGH_DISPATCH_SLOTS 42
 
+// ---- output packing (passes/pixel_pack_pass.hpp) --------------------------------------------------
+#define LGH_BIND_PACKED_PIXELS 0  // the frame's pixel-pack buffer, as uint words
+#define LGH_PACK_GROUP 256        // words per work group
+
 // ---- work groups --------------------------------------------------------------------------------
 #define LGH_GROUP_2D 8  // 8 x 8 invocations for per-pixel compute passes
 #define LGH_GROUP 256   // the build's 1D kernels

@@ -227,7 +227,7 @@ void FramePipeline::finishProbe(GLuint shadowRatio, const CameraMatrices& camera
 void FramePipeline::pack(OutputPixels pixels, FramePixels::Layout layout, GLuint packBuffer,
                          gl::GpuTimer& timer) {
   gl::ScopedGpuPass pass(timer, "readback");
-  packOutput(targets_, pixels, layout, packBuffer);
+  pixelPackPass_.run(targets_, pixels, layout, packBuffer);
 }
 
 void FramePipeline::render(const RenderRequest& request, const CachedScene& cached,

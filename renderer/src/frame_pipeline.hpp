@@ -22,6 +22,7 @@
 #include "passes/frame_targets.hpp"
 #include "passes/gbuffer_pass.hpp"
 #include "passes/lgh_frame_lighting.hpp"
+#include "passes/pixel_pack_pass.hpp"
 #include "scene/scene_cache.hpp"
 #include "shadows/shadow_frame.hpp"
 
@@ -45,6 +46,10 @@ class FramePipeline {
   // pass "readback".
   void pack(OutputPixels pixels, FramePixels::Layout layout, GLuint packBuffer,
             gl::GpuTimer& timer);
+  // The size of the pack buffer pack() needs for `pixels`.
+  static std::size_t packBufferBytes(const FramePixels& pixels) {
+    return PixelPackPass::bufferBytes(pixels);
+  }
 
   // draw() of linear float output, read back at once into report.image, the timer read: the
   // synchronous frame of the tests and of the LGH benchmark's probes.
@@ -66,6 +71,7 @@ class FramePipeline {
   CompositePass compositePass_;
   ForwardBlendPass forwardBlendPass_;
   DisplayPass displayPass_;
+  PixelPackPass pixelPackPass_;
   std::unique_ptr<LghFrameLighting> lghLighting_;
 };
 

@@ -209,7 +209,7 @@ std::uint64_t Renderer::Impl::submit(const RenderRequest& request) {
   };
   try {
     pipeline.draw(request, *lookup.entry, frame.timer, report, pixels);
-    gl::ReadbackPool::Lease lease = readback.acquire(frame.pixels.size());
+    gl::ReadbackPool::Lease lease = readback.acquire(FramePipeline::packBufferBytes(frame.pixels));
     pipeline.pack(pixels, frame.pixels.layout, lease.buffer, frame.timer);
     frame.pixels.bytes = std::move(lease.bytes);
     frame.fence = gl::Fence::insert();

@@ -153,7 +153,7 @@ TEST_F(DisplayTransform, KernelRoundsAlphaAsTheCpu) {
 }
 
 // The golden scenes (tests/integration/test_render_golden.cpp), the transparent background, a
-// bright, exposed ACES frame and a frame with blended surfaces.
+// bright, exposed ACES frame, odd sizes and a frame with blended surfaces.
 const std::vector<std::string> kScenes = {
     R"({"output": {"width": 160, "height": 120}})",
     R"({"camera": {"type": "look_at", "position": [0, 1, 3.4], "target": [0, 0.9, 0], "yfov": 50},
@@ -168,6 +168,9 @@ const std::vector<std::string> kScenes = {
     R"({"scene": {"asset": "BoxTextured-glTF/BoxTextured.gltf"},
         "output": {"width": 64, "height": 48, "transparent_background": true}})",
     R"({"output": {"width": 96, "height": 64, "tone_map": "none", "exposure": 3.5}})",
+    // Odd sizes: 37 x 19 x 3 bytes end in the middle of the pixel pack pass's last word.
+    R"({"output": {"width": 37, "height": 19}})",
+    R"({"output": {"width": 13, "height": 7, "transparent_background": true}})",
     // Blended surfaces (the Partial_Coating cell): composited in linear light, blended, then the
     // display pass writes the output (passes/display_pass.hpp).
     R"({"scene": {"asset": "ClearCoat-glTF/ClearCoatTest.gltf"},

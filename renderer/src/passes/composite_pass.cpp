@@ -102,34 +102,6 @@ void CompositePass::draw(const OutputSettings& output, OutputPixels pixels, bool
   glBindVertexArray(0);
 }
 
-void packOutput(const FrameTargets& targets, OutputPixels pixels, FramePixels::Layout layout,
-                GLuint packBuffer) {
-  GLenum format = GL_RGBA;
-  GLenum type = GL_FLOAT;
-  switch (layout) {
-    case FramePixels::Layout::Rgb8:
-      format = GL_RGB_INTEGER;
-      type = GL_UNSIGNED_BYTE;
-      break;
-    case FramePixels::Layout::Rgba8:
-      format = GL_RGBA_INTEGER;
-      type = GL_UNSIGNED_BYTE;
-      break;
-    case FramePixels::Layout::RgbaHalf:
-      type = GL_HALF_FLOAT;
-      break;
-    case FramePixels::Layout::RgbaFloat:
-      break;
-  }
-  const FramePixels probe{targets.width, targets.height, layout, nullptr};
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);  // rows tightly packed, whatever their length
-  glBindBuffer(GL_PIXEL_PACK_BUFFER, packBuffer);
-  glGetTextureImage(targets.outputs[static_cast<int>(pixels)].texture.id(), 0, format, type,
-                    static_cast<GLsizei>(probe.size()), nullptr);
-  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-}
-
 FloatImage readLinearOutput(FrameTargets& targets) {
   FloatImage image;
   image.width = targets.width;

@@ -6,7 +6,7 @@
 //            or (runToScene, frames with blended surfaces) FrameTargets::scene, linear light with
 //            the rows as GL stores them, for the forward blend and then the display pass
 //   shaders: glsl/fullscreen.vert, glsl/composite.frag (+ include/display_transform.glsl)
-// packOutput() then copies the output into a pixel-pack buffer, asynchronously.
+// The pixel pack pass (passes/pixel_pack_pass.hpp) then copies the output into a read-back buffer.
 #pragma once
 
 #include <optional>
@@ -50,12 +50,6 @@ void setDisplayUniforms(GLuint program, const OutputSettings& output, int height
 
 // What a frame of `output` is composited to: display codes for PNG, half or float for EXR.
 OutputPixels outputPixelsFor(const OutputSettings& output);
-
-// Issues the copy of the output into `packBuffer` (offset 0) as `layout` (Rgb8 drops the alpha
-// codes; the others copy every channel). Returns at once: the bytes are there once a fence
-// inserted after it has signalled.
-void packOutput(const FrameTargets& targets, OutputPixels pixels, FramePixels::Layout layout,
-                GLuint packBuffer);
 
 // Reads a LinearFloat output now (tests and the benchmark's probes).
 FloatImage readLinearOutput(FrameTargets& targets);

@@ -1,0 +1,65 @@
+#include "passes/pixel_pack_pass.hpp"
+
+#include "gl/shader_library.hpp"
+#include "gl/slots.hpp"
+
+namespace lgh {
+namespace {
+
+constexpr std::size_t kWordBytes = 4;
+
+std::size_t wordsFor(std::size_t bytes) { return (bytes + kWordBytes - 1) / kWordBytes; }
+
+void copyLinearLight(const FrameTargets& targets, OutputPixels pixels, FramePixels::Layout layout,
+                     GLuint packBuffer) {
+  const GLenum type = layout == FramePixels::Layout::RgbaHalf ? GL_HALF_FLOAT : GL_FLOAT;
+  const FramePixels probe{targets.width, targets.height, layout, nullptr};
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);  // rows tightly packed, whatever their length
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, packBuffer);
+  glGetTextureImage(targets.outputs[static_cast<int>(pixels)].texture.id(), 0, GL_RGBA, type,
+                    static_cast<GLsizei>(probe.size()), nullptr);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+}
+
+}  // namespace
+
+PixelPackPass::PixelPackPass() : program_(gl::buildComputeProgram("pixel_pack.comp")) {}
+
+std::size_t PixelPackPass::bufferBytes(const FramePixels& pixels) {
+  return wordsFor(pixels.size()) * kWordBytes;
+}
+
+void PixelPackPass::run(const FrameTargets& targets, OutputPixels pixels,
+                        FramePixels::Layout layout, GLuint packBuffer) {
+  const FramePixels probe{targets.width, targets.height, layout, nullptr};
+  if (probe.isDisplay()) {
+    packDisplayCodes(targets, pixels, layout, packBuffer);
+  } else {
+    copyLinearLight(targets, pixels, layout, packBuffer);
+  }
+}
+
+void PixelPackPass::packDisplayCodes(const FrameTargets& targets, OutputPixels pixels,
+                                     FramePixels::Layout layout, GLuint packBuffer) {
+  const FramePixels probe{targets.width, targets.height, layout, nullptr};
+  const std::size_t words = wordsFor(probe.size());
+  const GLuint program = program_.id();
+  glUseProgram(program);
+  glProgramUniform1i(program, glGetUniformLocation(program, "uWidth"), targets.width);
+  glProgramUniform1i(program, glGetUniformLocation(program, "uChannels"), probe.channels());
+  glProgramUniform1ui(program, glGetUniformLocation(program, "uWordCount"),
+                      static_cast<GLuint>(words));
+  glProgramUniform1ui(program, glGetUniformLocation(program, "uByteCount"),
+                      static_cast<GLuint>(probe.size()));
+  glBindTextureUnit(0, targets.outputs[static_cast<int>(pixels)].texture.id());
+  glBindBufferRange(GL_SHADER_STORAGE_BUFFER, LGH_BIND_PACKED_PIXELS, packBuffer, 0,
+                    static_cast<GLsizeiptr>(words * kWordBytes));
+  glDispatchCompute(static_cast<GLuint>((words + LGH_PACK_GROUP - 1) / LGH_PACK_GROUP), 1, 1);
+  // The buffer is mapped persistently: the CPU reads it once the frame's fence has signalled.
+  glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_PACKED_PIXELS, 0);
+  glBindTextureUnit(0, 0);
+}
+
+}  // namespace lgh

@@ -1,0 +1,39 @@
+// Pixel pack pass: the last GPU step of a frame, behind its fence.
+//   inputs:  FrameTargets::output(pixels), rows already in the image's order
+//   outputs: the frame's pixel-pack buffer (gl/readback_buffers.hpp) holding FramePixels of
+//            `layout`: display codes packed 3 or 4 bytes per pixel by glsl/pixel_pack.comp, or
+//            half / float linear light copied by glGetTextureImage (the target's own format)
+//   shaders: glsl/pixel_pack.comp
+// Display codes are packed by a compute shader rather than by glGetTextureImage: reading an
+// RGBA8UI target as RGB (or as any integer format) into a pack buffer is a slow conversion in
+// some drivers (docs/BENCHMARKS.md, "Output").
+#pragma once
+
+#include <cstddef>
+
+#include "gl/gl_objects.hpp"
+#include "lgh/frame_pixels.hpp"
+#include "passes/frame_targets.hpp"
+
+namespace lgh {
+
+class PixelPackPass {
+ public:
+  PixelPackPass();
+
+  // The size of the pack buffer a frame of `pixels` needs (its bytes rounded up to whole words).
+  static std::size_t bufferBytes(const FramePixels& pixels);
+
+  // Issues the copy of the output into `packBuffer` (offset 0) as `layout`; returns at once: the
+  // bytes are there once a fence inserted after it has signalled.
+  void run(const FrameTargets& targets, OutputPixels pixels, FramePixels::Layout layout,
+           GLuint packBuffer);
+
+ private:
+  void packDisplayCodes(const FrameTargets& targets, OutputPixels pixels,
+                        FramePixels::Layout layout, GLuint packBuffer);
+
+  gl::Program program_;
+};
+
+}  // namespace lgh
