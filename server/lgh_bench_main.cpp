@@ -14,11 +14,13 @@
 
 #include "bench/bench_command.hpp"
 #include "cli_common.hpp"
+#include "crash_report.hpp"
 #include "lgh/error.hpp"
 #include "lgh/scene_worker.hpp"
 
 // A function-try-block: set-up errors (CLI, logging) end in a message, never in terminate().
 int main(int argc, char** argv) try {
+  lgh::installCrashReport("lgh-bench");
   if (argc == 2 && std::string_view(argv[1]) == lgh::bench::kSceneWorkerFlag) {
     return lgh::runSceneParserWorker(lgh::kSceneWorkerFd);
   }

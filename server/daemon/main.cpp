@@ -15,6 +15,7 @@
 
 #include "benchmark_runner.hpp"
 #include "config.hpp"
+#include "crash_report.hpp"
 #include "daemon_context.hpp"
 #include "lgh/scene_worker.hpp"
 #include "logging.hpp"
@@ -130,6 +131,7 @@ int serve(const DaemonConfig& config) {
 }  // namespace lghd
 
 int main(int argc, char** argv) {
+  lgh::installCrashReport("lghd");
   if (argc == 2 && std::string_view(argv[1]) == lghd::kProbeVulkanFlag) {
     return lghd::printVulkanProbe();
   }
