@@ -178,6 +178,7 @@ std::uint64_t Renderer::Impl::submit(const RenderRequest& request) {
     return std::count_if(pending.begin(), pending.end(),
                          [](const PendingFrame& frame) { return !frame.readBack; });
   };
+  const Stopwatch slotWait;
   while (static_cast<std::size_t>(unfinished()) >= limit) {
     const auto oldest = std::find_if(pending.begin(), pending.end(),
                                      [](const PendingFrame& frame) { return !frame.readBack; });
@@ -190,13 +191,21 @@ std::uint64_t Renderer::Impl::submit(const RenderRequest& request) {
     frame.timer = std::move(spareTimers.back());
     spareTimers.pop_back();
   }
+  const double slotWaitMs = slotWait.elapsedMs();
+  const Stopwatch sceneTimer;
   SceneCache::Lookup lookup = cache.get(request.scene, loadOptionsOf(request));
+  const double sceneMs = sceneTimer.elapsedMs();
   frame.sceneCacheHit = lookup.hit;
   FrameReport& report = frame.report;
   report.decide("scene_cache", lookup.hit ? "hit" : "miss");
   if (lookup.prefetched) report.decide("scene_parse", "prefetched");
   report.timings.add("scene load", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.loadMs);
   report.timings.add("upload", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.uploadMs);
+  // Parts of "submit" spent waiting: for a frame in flight to finish (--frames-in-flight), and
+  // for the scene's parse (a prefetch not done yet, or a parse of its own) besides its upload.
+  report.timings.add("slot wait", TimingRow::Clock::Cpu, slotWaitMs);
+  report.timings.add("scene wait", TimingRow::Clock::Cpu,
+                     std::max(0.0, sceneMs - (lookup.hit ? 0.0 : lookup.uploadMs)));
   report.warnings = lookup.entry->scene.warnings;
 
   const OutputPixels pixels = outputPixelsFor(request.output);

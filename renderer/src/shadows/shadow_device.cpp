@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "context/container_hints.hpp"
+#include "core/stopwatch.hpp"
 #include "gl/gl_api.hpp"
 #include "lgh/error.hpp"
 
@@ -94,13 +95,16 @@ vk::TracePath chooseTracePath(const vk::ShadowTracer& tracer, ShadowTracing requ
   return path;
 }
 
-const vk::TraceScene& ShadowDevice::traceScene(const CachedScene& scene, double* buildMs) {
+const vk::TraceScene& ShadowDevice::traceScene(const CachedScene& scene, double* buildMs,
+                                               double* buildWallMs) {
   TraceSceneSlot& slot = scene.trace;
   if (!slot.scene || slot.epoch != epoch_) {
+    const Stopwatch wall;
     slot.scene.reset();
     slot.scene = tracer()->buildScene(scene.scene);
     slot.epoch = epoch_;
     if (buildMs != nullptr) *buildMs = slot.scene->buildGpuMs();
+    if (buildWallMs != nullptr) *buildWallMs = wall.elapsedMs();
   }
   return *slot.scene;
 }

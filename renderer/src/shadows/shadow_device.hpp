@@ -36,7 +36,8 @@ class ShadowDevice {
   // The acceleration structures of `scene` on the tracer (which must exist): built on first use
   // and after a new tracer, cached with the scene; `*buildMs` gets their GPU build time when this
   // call built them.
-  const vk::TraceScene& traceScene(const CachedScene& scene, double* buildMs = nullptr);
+  const vk::TraceScene& traceScene(const CachedScene& scene, double* buildMs = nullptr,
+                                   double* buildWallMs = nullptr);
 
  private:
   std::unique_ptr<vk::ShadowTracer> tracer_;

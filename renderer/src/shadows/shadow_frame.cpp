@@ -65,13 +65,14 @@ ShadowRayLayout ShadowFrame::budget(const ShadowFrameInputs& inputs, FrameReport
 
 const vk::TraceScene& ShadowFrame::traceScene(vk::ShadowTracer& /*tracer*/,
                                               const CachedScene& scene) {
-  return device_->traceScene(scene, &buildMs_);
+  return device_->traceScene(scene, &buildMs_, &buildWallMs_);
 }
 
 void ShadowFrame::trace(const ShadowFrameInputs& inputs, const CachedScene& scene,
                         const FrameTargets& frame, gl::GpuTimer& timer, FrameReport& report) {
   traced_ = false;
   buildMs_ = -1.0;
+  buildWallMs_ = -1.0;
   transferMs_ = 0.0;
   layout_ = {};
   lghSamples_ = inputs.lghSamples;
@@ -174,6 +175,10 @@ GLuint ShadowFrame::filterLgh(int iterations, const CameraMatrices& camera,
 
 void ShadowFrame::collectTimings(FrameReport& report) {
   if (buildMs_ >= 0.0) report.timings.add("shadow as build", TimingRow::Clock::Gpu, buildMs_);
+  // The build's wall time on the render thread: allocations and its waits besides the GPU's work.
+  if (buildWallMs_ >= 0.0) {
+    report.timings.add("shadow as build wall", TimingRow::Clock::Cpu, buildWallMs_);
+  }
   if (!traced_ || device_ == nullptr || device_->tracer() == nullptr) return;
   report.timings.add("shadow rays", TimingRow::Clock::Gpu,
                      device_->tracer()->collectTimings().traceGpuMs);

@@ -96,6 +96,7 @@ class ShadowFrame {
   GLuint lghSamples_ = 0;
   bool traced_ = false;
   double buildMs_ = -1.0;
+  double buildWallMs_ = -1.0;
   double transferMs_ = 0.0;
 };
 

@@ -15,6 +15,10 @@ namespace {
 using BuildFlag = ::vk::BuildAccelerationStructureFlagBitsKHR;
 constexpr ::vk::DeviceSize kPositionBytes = sizeof(glm::vec3);
 constexpr ::vk::DeviceSize kIndexBytes = sizeof(std::uint32_t);
+// Compaction halves a bottom level's memory or so, but costs a round trip to the GPU (the
+// compacted sizes are read back before the copies) and a second allocation per mesh: worth it
+// for large scenes, not for the small ones a thumbnail batch loads by the dozen.
+constexpr ::vk::DeviceSize kCompactFromBytes = 8ULL << 20;
 
 void memoryBarrier(const ::vk::raii::CommandBuffer& commands, ::vk::PipelineStageFlags from,
                    ::vk::AccessFlags written, ::vk::PipelineStageFlags to, ::vk::AccessFlags read) {
@@ -79,6 +83,7 @@ struct MeshBuild {
   std::vector<::vk::AccelerationStructureGeometryKHR> geometries;
   std::vector<::vk::AccelerationStructureBuildRangeInfoKHR> ranges;
   ::vk::DeviceSize scratchOffset = 0;
+  ::vk::DeviceSize bytes = 0;
   std::optional<AccelerationStructure> uncompacted;
 
   ::vk::AccelerationStructureBuildGeometryInfoKHR info(::vk::DeviceAddress scratch = 0) const {
@@ -105,6 +110,7 @@ MeshBuild prepareMesh(const VulkanDevice& device, const PackedMesh& mesh,
       ::vk::AccelerationStructureBuildTypeKHR::eDevice, build.info(), counts);
   build.uncompacted.emplace(device, ::vk::AccelerationStructureTypeKHR::eBottomLevel,
                             sizes.accelerationStructureSize);
+  build.bytes = sizes.accelerationStructureSize;
   build.scratchOffset = scratchBytes;
   scratchBytes += alignUp(sizes.buildScratchSize, device.limits().scratchAlignment);
   return build;
@@ -181,6 +187,9 @@ BottomLevels buildBottomLevels(const VulkanDevice& device, const PackedGeometry&
     levels.structureOfMesh[m] = builds.size();
     builds.push_back(prepareMesh(device, geometry.meshes[m], upload, scratchBytes));
   }
+  ::vk::DeviceSize uncompactedBytes = 0;
+  for (const MeshBuild& build : builds) uncompactedBytes += build.bytes;
+  const bool compacted = uncompactedBytes >= kCompactFromBytes;
   const DeviceBuffer scratch(device, {.size = scratchBytes,
                                       .usage = ::vk::BufferUsageFlagBits::eStorageBuffer,
                                       .memory = MemoryKind::DeviceLocal,
@@ -195,9 +204,14 @@ BottomLevels buildBottomLevels(const VulkanDevice& device, const PackedGeometry&
     upload.record(commands);
     timestamps.begin(commands, 0);
     recordBuilds(commands, builds, scratch.address());
-    recordSizeQuery(commands, builds, sizeQueries);
+    if (compacted) recordSizeQuery(commands, builds, sizeQueries);
     timestamps.end(commands, 0);
   });
+  if (!compacted) {
+    for (MeshBuild& build : builds) levels.structures.push_back(std::move(*build.uncompacted));
+    levels.buildGpuMs = timestamps.elapsedMs(0);
+    return levels;
+  }
   levels.structures = compact(device, builds, sizeQueries, timestamps);
   levels.buildGpuMs = timestamps.elapsedMs(0) + timestamps.elapsedMs(1);
   return levels;
