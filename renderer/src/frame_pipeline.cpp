@@ -76,9 +76,9 @@ void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached
   const auto lightCount = static_cast<int>(lights.size());
   {
     gl::ScopedGpuPass pass(timer, "gbuffer");
-    gbufferPass_.run(
-        {&materials, &camera, &request.settings.primitives, lightBuffer_.id(), lightCount},
-        *cached.gpu, targets_);
+    gbufferPass_.run({&materials, &camera, &request.settings.primitives, lightBuffer_.id(),
+                      lightCount, request.settings.depthPrepass},
+                     *cached.gpu, targets_);
   }
   LghFrameLighting::ShadowSamples samples;
   if (lgh.enabled) {

@@ -31,6 +31,7 @@ struct GiFlags {
   float alpha = 2.0F;
   std::string path = "compute";
   float shadowJitter = 0.0F;
+  bool depthPrepass = false;
   int table3Vpls = 100000;
   std::vector<std::string> interleaves = cli::enumChoices<InterleaveMode>();
   int iterations = 10;
@@ -66,6 +67,7 @@ GiBenchmarkOptions optionsFrom(const GiFlags& flags, const cli::ContextFlags& co
   options.alpha = flags.alpha;
   options.path = cli::enumValue<LightingPath>(flags.path);
   options.shadowJitter = flags.shadowJitter;
+  options.depthPrepass = flags.depthPrepass;
   options.table3Vpls = flags.table3Vpls;
   options.interleaves.clear();
   for (const std::string& name : flags.interleaves) {
@@ -154,6 +156,8 @@ Command addGiCommand(CLI::App& app, const cli::ContextFlags& context) {
                   "jitter of the LGH's shadow samples, 0..1 of the paper's (docs/GI.md)")
       ->check(CLI::Range(0.0F, 1.0F))
       ->capture_default_str();
+  sub->add_flag("--depth-prepass", flags->depthPrepass,
+                "draw depth first, then the G-buffer once per pixel (settings.depth_prepass)");
   sub->add_option("--table3-vpls", flags->table3Vpls, "VPLs of Table 3")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

@@ -220,10 +220,12 @@ class MaterialTechniques : public ::testing::Test {
 
   // Renders `cached` with a request whose `materials` apply `parameters` to material `target`.
   static Frame render(const lgh::CachedScene& cached, const json& camera, const json& parameters,
-                      int width = kWidth, int height = kHeight, const std::string& target = "") {
-    json body = {{"camera", camera},
-                 {"output", {{"width", width}, {"height", height}, {"tone_map", "aces"}}},
-                 {"settings", {{"shadows", "off"}, {"ambient", 0.04}}}};
+                      int width = kWidth, int height = kHeight, const std::string& target = "",
+                      bool depthPrepass = false) {
+    json body = {
+        {"camera", camera},
+        {"output", {{"width", width}, {"height", height}, {"tone_map", "aces"}}},
+        {"settings", {{"shadows", "off"}, {"ambient", 0.04}, {"depth_prepass", depthPrepass}}}};
     if (!parameters.empty()) {
       const json match = target.empty() ? json{{"index", 0}} : json{{"name", target}};
       body["materials"] = json::array({{{"match", match}, {"parameters", parameters}}});
@@ -615,6 +617,37 @@ TEST_F(MaterialTechniques, Gallery) {
   }
   save("wrap_modes", wraps);
   std::cout << "gallery written to " << out << "\n";
+}
+
+// settings.depth_prepass draws the same image: the G-buffer's second draw passes the depth test
+// (LEQUAL) exactly where the first draw left each pixel's nearest surface, for plain surfaces,
+// relief mapping (whose silhouettes discard fragments) and tessellated displacement.
+TEST_F(MaterialTechniques, DepthPrepassDrawsTheSameImage) {
+  const std::vector<std::pair<std::string, json>> techniques = {
+      {"plain", json::object()},
+      {"relief",
+       {{"surface", "relief"},
+        {"height_texture", kHeightMap},
+        {"normal_texture", kNormalMap},
+        {"height_scale", 0.06}}},
+      {"displacement",
+       {{"surface", "displacement"},
+        {"height_texture", kHeightMap},
+        {"height_scale", 0.03},
+        {"tessellation_pixels", 2}}},
+  };
+  for (const auto& [name, parameters] : techniques) {
+    SCOPED_TRACE(name);
+    const Frame once = render(*board, kBoardCamera, parameters);
+    const Frame prepassed = render(*board, kBoardCamera, parameters, kWidth, kHeight, "", true);
+    const lgh::test::ImageDifference difference =
+        lgh::test::compareImages(prepassed.image, once.image, 0);
+    EXPECT_EQ(difference.maxError, 0) << "mean " << difference.meanAbsoluteError;
+  }
+  const Frame ball = render(*smoothBall, kBallCamera, json::object());
+  const Frame ballPrepassed =
+      render(*smoothBall, kBallCamera, json::object(), kWidth, kHeight, "", true);
+  EXPECT_EQ(lgh::test::compareImages(ballPrepassed.image, ball.image, 0).maxError, 0);
 }
 
 }  // namespace

@@ -77,6 +77,7 @@ json describe(const RenderRequest& request) {
         {"background", output.background}}},
       {"settings",
        {{"ambient", request.settings.ambient},
+        {"depth_prepass", request.settings.depthPrepass},
         {"lgh",
          {{"enabled", lgh.enabled},
           {"vpl_count", lgh.vplCount},

@@ -111,6 +111,7 @@ class GiSession {
     request.output.width = run.width;
     request.output.height = run.height;
     request.settings.shadows.mode = run.shadows ? ShadowMode::On : ShadowMode::Off;
+    request.settings.depthPrepass = options_.depthPrepass;
     LghSettings& lgh = request.settings.lgh;
     lgh.enabled = true;
     lgh.alpha = run.alpha;

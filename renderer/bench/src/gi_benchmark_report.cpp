@@ -89,6 +89,7 @@ json settingsJson(const GiBenchmarkResult& result) {
           {"alpha_paper", o.alpha / 2.0F},
           {"path", std::string(enumName(o.path))},
           {"shadow_jitter", o.shadowJitter},
+          {"depth_prepass", o.depthPrepass},
           {"table3_vpls", o.table3Vpls},
           {"interleaves", interleaves},
           {"warmup_iterations", o.warmupIterations},
@@ -349,10 +350,10 @@ std::string giBenchmarkMarkdown(const GiBenchmarkResult& result) {
   const GiBenchmarkOptions& o = result.options;
   std::string out = fmt::format(
       "# lgh-bench gi\n\n{} ({}), Vulkan: {}; scene {} ({} triangles), {}x{}, {} bounces, alpha "
-      "{} (the paper's {}), lighting path {}, medians of {} frames (GPU ms).\n\n",
+      "{} (the paper's {}), lighting path {}{}, medians of {} frames (GPU ms).\n\n",
       result.device.glRenderer, result.device.contextPath, result.shadows.deviceName, o.sceneName,
       result.sceneTriangles, o.width, o.height, o.bounces, o.alpha, o.alpha / 2.0F,
-      enumName(o.path), o.timedIterations);
+      enumName(o.path), o.depthPrepass ? ", depth pre-pass" : "", o.timedIterations);
   out += "## Table 2\n\n" + table2Markdown(result);
   if (result.scalingRatio > 0.0) {
     out += fmt::format(

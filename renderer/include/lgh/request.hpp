@@ -274,6 +274,8 @@ struct RenderSettings {
   TextureCompression textureCompression = TextureCompression::None;
   // Render assets whose required glTF extensions this renderer lacks, with a warning (else 422).
   bool ignoreUnsupportedExtensions = false;
+  // Draw the opaque surfaces' depth first, then the G-buffer once per pixel (docs/LIGHTING.md).
+  bool depthPrepass = false;
   PrimitiveSettings primitives;
   ShadowSettings shadows;
   LghSettings lgh;

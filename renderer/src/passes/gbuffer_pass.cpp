@@ -28,6 +28,26 @@ void GBufferPass::run(const Inputs& inputs, GpuScene& gpuScene, FrameTargets& ta
   glEnable(GL_FRAMEBUFFER_SRGB);  // the albedo target is sRGB-encoded
   glCullFace(GL_BACK);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_LIGHTS, inputs.lights);
+  if (inputs.depthPrepass) {
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    drawOpaque(inputs, gpuScene, targets);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+  }
+  drawOpaque(inputs, gpuScene, targets);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
+  glBindVertexArray(0);
+  glFrontFace(GL_CCW);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_FRAMEBUFFER_SRGB);
+  unbindMaterialSamplers();
+}
+
+void GBufferPass::drawOpaque(const Inputs& inputs, GpuScene& gpuScene,
+                             const FrameTargets& targets) {
   const SurfaceFrame frame{inputs.camera,        inputs.primitives, targets.width,
                            targets.height,       inputs.lightCount, 0.0F,
                            maxTessellationLevel_};
@@ -56,12 +76,6 @@ void GBufferPass::run(const Inputs& inputs, GpuScene& gpuScene, FrameTargets& ta
     }
     drawSurface(program, item, material, key.displaced);
   }
-  glBindVertexArray(0);
-  glFrontFace(GL_CCW);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_FRAMEBUFFER_SRGB);
-  unbindMaterialSamplers();
 }
 
 }  // namespace lgh

@@ -9,6 +9,10 @@
 //            points through glsl/gbuffer_lines.geom / glsl/gbuffer_points.geom, which widen them
 //            into screen-space quads; flat shading through glsl/gbuffer_flat.geom; displacement
 //            through glsl/gbuffer_displace.tesc/.tese (passes/surface_programs.hpp)
+// With a depth pre-pass (settings.depth_prepass) the surfaces are drawn twice: depth alone, then
+// the targets with the depth test at LEQUAL and depth writes off, so each pixel's targets are
+// written once. The same programs draw both times: GL's invariance rules then give the same
+// depth values (only masks and the depth function differ between the two).
 #pragma once
 
 #include "gl/gl_objects.hpp"
@@ -31,6 +35,7 @@ class GBufferPass {
     const PrimitiveSettings* primitives = nullptr;
     GLuint lights = 0;  // SSBO of GpuLight
     int lightCount = 0;
+    bool depthPrepass = false;  // settings.depth_prepass
   };
   void run(const Inputs& inputs, GpuScene& gpuScene, FrameTargets& targets);
 
@@ -39,6 +44,9 @@ class GBufferPass {
   float maxTessellationLevel() const { return maxTessellationLevel_; }
 
  private:
+  // One draw of every opaque surface, with the depth and colour state the caller set.
+  void drawOpaque(const Inputs& inputs, GpuScene& gpuScene, const FrameTargets& targets);
+
   SurfacePrograms programs_;
   float maxTessellationLevel_ = 64.0F;
 };

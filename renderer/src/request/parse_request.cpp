@@ -229,6 +229,7 @@ RenderSettings readSettings(const json& object) {
   read(object, "ambient", settings.ambient);
   readEnum(object, "texture_compression", settings.textureCompression);
   read(object, "ignore_unsupported_extensions", settings.ignoreUnsupportedExtensions);
+  read(object, "depth_prepass", settings.depthPrepass);
   if (const auto it = object.find("primitives"); it != object.end()) {
     settings.primitives = readPrimitives(*it);
   }

@@ -46,6 +46,7 @@ struct GiBenchmarkOptions {
   float alpha = 2.0F;  // r_l = alpha h_l here; the paper's (its authors' code) alpha 1
   LightingPath path = LightingPath::Compute;
   float shadowJitter = 0.0F;  // settings.lgh.shadow_jitter (1: the paper's)
+  bool depthPrepass = false;  // settings.depth_prepass
   int table3Vpls = 100000;
   std::vector<InterleaveMode> interleaves{InterleaveMode::None, InterleaveMode::Tiles2x2,
                                           InterleaveMode::Tiles4x4};
