@@ -20,18 +20,24 @@ struct Command {
   std::function<int()> run;  // exit status; may throw lgh::Error
 };
 
-// Prints a benchmark's typed result: the table on stdout, or with --json the JSON document
-// (bench/result_json.hpp) on stdout and the table on stderr (so that `> out.json` keeps both).
-// Returns the exit status.
-template <typename Result>
-int printResult(const Result& result, const std::string& table, bool json) {
+// Prints a report: on stdout, or with --json the JSON document that `document()` makes on stdout
+// and the report on stderr (so that `> out.json` keeps both). Returns the exit status.
+template <typename MakeDocument>
+int printReport(const std::string& report, bool json, const MakeDocument& document) {
   if (json) {
-    std::cerr << table;
-    std::cout << nlohmann::json(result).dump(2) << '\n';
+    std::cerr << report;
+    std::cout << document().dump(2) << '\n';
   } else {
-    std::cout << table;
+    std::cout << report;
   }
   return 0;
+}
+
+// The same for a benchmark's typed result and its table; the document is the result's JSON
+// (bench/result_json.hpp).
+template <typename Result>
+int printResult(const Result& result, const std::string& table, bool json) {
+  return printReport(table, json, [&] { return nlohmann::json(result); });
 }
 
 // A VPL count as the tables label it: 1000 -> "1K", 2000000 -> "2M", 1500 -> "1500".

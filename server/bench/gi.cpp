@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "bench/bench_command.hpp"
+#include "bench/bench_options.hpp"
 #include "lgh/bench/gi_benchmark.hpp"
 #include "lgh/enum_names.hpp"
 #include "lgh/error.hpp"
@@ -110,14 +111,8 @@ void writeOutputs(const GiBenchmarkResult& result, const std::string& dir) {
 int runGi(const GiFlags& flags, const cli::ContextFlags& context) {
   const GiBenchmarkResult result = runGiBenchmark(optionsFrom(flags, context));
   if (!flags.outDir.empty()) writeOutputs(result, flags.outDir);
-  const std::string report = giBenchmarkMarkdown(result);
-  if (flags.json) {
-    std::cerr << report;
-    std::cout << giBenchmarkJson(result).dump(2) << '\n';
-  } else {
-    std::cout << report;
-  }
-  return 0;
+  return printReport(giBenchmarkMarkdown(result), flags.json,
+                     [&] { return giBenchmarkJson(result); });
 }
 
 }  // namespace
@@ -128,68 +123,36 @@ Command addGiCommand(CLI::App& app, const cli::ContextFlags& context) {
       "gi",
       "time whole GI frames (light-traced VPLs, LGH, shadows): Tables 2 and 3, Fig. 5, quality");
   sub->fallthrough();
-  sub->add_option("--vpls", flags->vpls, "VPL counts of Table 2, comma separated")
-      ->delimiter(',')
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--width", flags->width, "frame width")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--height", flags->height, "frame height")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--scene", flags->scene, "built-in scene: atrium, demo")
-      ->check(CLI::IsMember(cli::enumChoices<BuiltinScene>()))
-      ->capture_default_str();
+  addPositiveOption(*sub, "--vpls", flags->vpls, "VPL counts of Table 2, comma separated");
+  addFrameSizeOptions(*sub, flags->width, flags->height);
+  addEnumOption<BuiltinScene>(*sub, "--scene", flags->scene, "built-in scene: atrium, demo");
   sub->add_option("--asset", flags->asset, "a glTF file under --asset-root instead of --scene");
   sub->add_option("--bounces", flags->bounces, "diffuse bounces of the light paths (1..3)")
       ->check(CLI::Range(1, 3))
       ->capture_default_str();
-  sub->add_option("--alpha", flags->alpha,
-                  "LGH alpha (r_l = alpha h_l; 2 is the paper's alpha 1, docs/LGH.md)")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--path", flags->path, "lighting path: compute, raster")
-      ->check(CLI::IsMember(cli::enumChoices<LightingPath>({"auto"})))
-      ->capture_default_str();
+  addPositiveOption(*sub, "--alpha", flags->alpha,
+                    "LGH alpha (r_l = alpha h_l; 2 is the paper's alpha 1, docs/LGH.md)");
+  addEnumOption<LightingPath>(*sub, "--path", flags->path, "lighting path: compute, raster",
+                              {"auto"});
   sub->add_option("--shadow-jitter", flags->shadowJitter,
                   "jitter of the LGH's shadow samples, 0..1 of the paper's (docs/GI.md)")
       ->check(CLI::Range(0.0F, 1.0F))
       ->capture_default_str();
   sub->add_flag("--depth-prepass", flags->depthPrepass,
                 "draw depth first, then the G-buffer once per pixel (settings.depth_prepass)");
-  sub->add_option("--table3-vpls", flags->table3Vpls, "VPLs of Table 3")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--interleave", flags->interleaves, "interleavings of Table 3: none, 2x2, 4x4")
-      ->delimiter(',')
-      ->check(CLI::IsMember(cli::enumChoices<InterleaveMode>()))
-      ->capture_default_str();
-  sub->add_option("--iterations", flags->iterations, "timed frames per configuration")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--warmup", flags->warmup, "untimed frames first")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  addPositiveOption(*sub, "--table3-vpls", flags->table3Vpls, "VPLs of Table 3");
+  addEnumOption<InterleaveMode>(*sub, "--interleave", flags->interleaves,
+                                "interleavings of Table 3: none, 2x2, 4x4");
+  addIterationOptions(*sub, flags->iterations, "timed frames per configuration", flags->warmup,
+                      "untimed frames first");
   sub->add_flag("--no-overdraw", flags->noOverdraw, "skip the overdraw frames (Fig. 5)");
   sub->add_flag("--no-quality", flags->noQuality, "skip the references and the error report");
-  sub->add_option("--quality-width", flags->qualityWidth, "width of the quality runs")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--quality-height", flags->qualityHeight, "height of the quality runs")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--quality-vpls", flags->qualityVpls, "VPLs of the quality runs")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--quality-alphas", flags->qualityAlphas, "alphas of the quality runs")
-      ->delimiter(',')
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--pt-samples", flags->pathTracedSamples,
-                  "samples per pixel of the path-traced reference")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  addPositiveOption(*sub, "--quality-width", flags->qualityWidth, "width of the quality runs");
+  addPositiveOption(*sub, "--quality-height", flags->qualityHeight, "height of the quality runs");
+  addPositiveOption(*sub, "--quality-vpls", flags->qualityVpls, "VPLs of the quality runs");
+  addPositiveOption(*sub, "--quality-alphas", flags->qualityAlphas, "alphas of the quality runs");
+  addPositiveOption(*sub, "--pt-samples", flags->pathTracedSamples,
+                    "samples per pixel of the path-traced reference");
   sub->add_option("--seed", flags->seed, "seed of the light paths")->capture_default_str();
   sub->add_flag("--json", flags->json, "JSON on stdout (the report goes to stderr)");
   sub->add_option("--out-dir", flags->outDir,

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "bench/bench_command.hpp"
+#include "bench/bench_options.hpp"
 #include "lgh/bench/render_benchmark.hpp"
 #include "lgh/enum_names.hpp"
 #include "lgh/error.hpp"
@@ -129,41 +130,23 @@ Command addRenderCommand(CLI::App& app, const cli::ContextFlags& context) {
   CLI::App* sub = app.add_subcommand(
       "render", "time LGH lighting (raster and compute paths) on the demo scene with VPLs");
   sub->fallthrough();
-  sub->add_option("--vpls", flags->vpls, "VPL counts, comma separated")
-      ->delimiter(',')
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--width", flags->width, "frame width")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--height", flags->height, "frame height")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--paths", flags->paths, "lighting paths: raster, compute")
-      ->delimiter(',')
-      ->check(CLI::IsMember(cli::enumChoices<LightingPath>({"auto"})))
-      ->capture_default_str();
-  sub->add_option("--interleave", flags->interleaves, "interleaving: none, 2x2, 4x4")
-      ->delimiter(',')
-      ->check(CLI::IsMember(cli::enumChoices<InterleaveMode>()))
-      ->capture_default_str();
+  addPositiveOption(*sub, "--vpls", flags->vpls, "VPL counts, comma separated");
+  addFrameSizeOptions(*sub, flags->width, flags->height);
+  addEnumOption<LightingPath>(*sub, "--paths", flags->paths, "lighting paths: raster, compute",
+                              {"auto"});
+  addEnumOption<InterleaveMode>(*sub, "--interleave", flags->interleaves,
+                                "interleaving: none, 2x2, 4x4");
   sub->add_option("--samples", flags->samples, "shadow samples per pixel (1..8), comma separated")
       ->delimiter(',')
       ->check(CLI::Range(1, 8))
       ->capture_default_str();
-  sub->add_option("--alpha", flags->alpha, "hierarchy blending parameter alpha")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  addPositiveOption(*sub, "--alpha", flags->alpha, "hierarchy blending parameter alpha");
   sub->add_option("--locks", flags->locks,
                   "raster reservoir locks: paper (4x4 only, Table 3), none, all")
       ->check(CLI::IsMember({"paper", "none", "all"}))
       ->capture_default_str();
-  sub->add_option("--iterations", flags->iterations, "timed frames per run")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--warmup", flags->warmup, "untimed frames first")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  addIterationOptions(*sub, flags->iterations, "timed frames per run", flags->warmup,
+                      "untimed frames first");
   sub->add_flag("--no-reference", flags->noReference, "skip the brute-force image and the RMSE");
   sub->add_flag("--no-overdraw", flags->noOverdraw, "skip the overdraw statistics");
   sub->add_flag("--json", flags->json, "JSON on stdout (the table goes to stderr)");

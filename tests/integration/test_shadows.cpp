@@ -104,6 +104,10 @@ TEST_F(Shadows, BothTracingPathsRenderTheSameImage) {
   const Frame pipeline = render(request);
   EXPECT_EQ(rayQuery.decisions.at("shadows"), "ray-query");
   EXPECT_EQ(pipeline.decisions.at("shadows"), "pipeline");
+  // The rays go through staging copies (shadows/batch_transport.hpp): llvmpipe cannot use
+  // lavapipe's memory, so interop is tried, refused and logged first.
+  EXPECT_EQ(rayQuery.decisions.at("shadow_transport"), "staging");
+  EXPECT_EQ(pipeline.decisions.at("shadow_transport"), "staging");
   // The LGH's float atomics vary in the last bits from run to run (test_context_paths.cpp).
   ASSERT_EQ(rayQuery.image.rgba.size(), pipeline.image.rgba.size());
   double largest = 0.0;

@@ -9,7 +9,7 @@ layout(set = 0, binding = 0) uniform accelerationStructureEXT scene;
 layout(std430, set = 0, binding = 1) readonly buffer Rays { vec4 rays[]; };  // 2 per ray
 layout(std430, set = 0, binding = 2) writeonly buffer Hits { HitRecord hits[]; };
 
-// HitPushConstants in renderer/src/vk/hit_recorder.hpp.
+// HitPushConstants in renderer/src/vk/trace_layout.hpp.
 layout(push_constant, std430) uniform HitConstants {
   uint rayCount;
   uint anyHit;       // 1: occlusion only, done at the first hit found

@@ -1,17 +1,14 @@
 // The GL side of the closest-hit batch buffers, which the Vulkan tracer owns
-// (vk/shadow_tracer.hpp, "Closest hits"), as shadows/ray_batch_transport.hpp is for shadow rays:
-//   interop   the Vulkan memory imported into GL buffers: rays and hits never leave the GPU;
-//             synchronized with the tracer's hit semaphores where both sides have them, else
-//             with glFinish and a fence;
-//   staging   GL buffers of its own, copied into and out of Vulkan's mapped host memory (Mesa:
-//             llvmpipe cannot back a GL buffer with lavapipe memory).
-// Chosen once, on the first batch, by trying interop; the choice is logged.
+// (vk/shadow_tracer.hpp, "Closest hits"): rays that GL writes and hits that GL reads, handed over
+// by interop (with the tracer's hit semaphores) or staging copies, as the shadow rays are
+// (shadows/batch_transport.hpp).
 #pragma once
 
 #include <cstdint>
 #include <string>
 
 #include "gl/gl_objects.hpp"
+#include "shadows/batch_transport.hpp"
 #include "vk/shadow_tracer.hpp"
 
 namespace lgh {
@@ -19,9 +16,6 @@ namespace lgh {
 class HitBatchTransport {
  public:
   explicit HitBatchTransport(vk::ShadowTracer& tracer);
-  ~HitBatchTransport();
-  HitBatchTransport(const HitBatchTransport&) = delete;
-  HitBatchTransport& operator=(const HitBatchTransport&) = delete;
 
   struct GlBuffers {
     GLuint rays = 0;  // 2 x vec4 per ray (GL writes)
@@ -36,29 +30,13 @@ class HitBatchTransport {
   double trace(const vk::TraceScene& scene, vk::TracePath path, const vk::HitBatchShape& shape);
 
   // "interop" (semaphores), "interop-finish" or "staging".
-  std::string name() const;
+  std::string name() const { return transport_.name(); }
 
  private:
-  enum class Mode { Undecided, InteropSemaphores, InteropFinish, Staging };
-  struct Imported {
-    gl::MemoryObject memory = gl::MemoryObject::empty();
-    gl::Buffer buffer = gl::Buffer::empty();
-  };
-
-  void decide(std::uint32_t rays);
-  bool importAll(const vk::HitBuffers& buffers);
-  bool importSemaphores();
+  BatchTransport::BuffersFor buffersFor(std::uint32_t rays);
 
   vk::ShadowTracer& tracer_;
-  Mode mode_ = Mode::Undecided;
-  std::uint64_t generation_ = 0;
-  bool haveBuffers_ = false;
-  Imported rays_;
-  Imported hits_;
-  gl::SizedBuffer stagingRays_;
-  gl::SizedBuffer stagingHits_;
-  gl::Semaphore glDone_ = gl::Semaphore::empty();
-  gl::Semaphore vkDone_ = gl::Semaphore::empty();
+  BatchTransport transport_;
 };
 
 }  // namespace lgh

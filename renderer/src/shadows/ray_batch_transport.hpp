@@ -1,17 +1,12 @@
 // The GL side of the shadow-ray buffers, which the Vulkan tracer owns (vk/shadow_tracer.hpp):
-//   interop   the Vulkan memory imported into GL buffers (GL_EXT_memory_object_fd): the rays and
-//             their visibility never leave the GPU. Synchronized with imported semaphores
-//             (GL_EXT_semaphore_fd) where both sides have them, else with glFinish and a fence.
-//   staging   GL buffers of its own, copied into and out of Vulkan's mapped host memory, where the
-//             drivers cannot share memory (Mesa: llvmpipe cannot back a buffer with lavapipe
-//             memory) - so CI still runs every step of the shadowed frame.
-// The transport is chosen once, on the first batch, by trying interop; the choice is logged.
+// origins and targets that GL writes, visibility that GL reads, handed over by interop or staging
+// copies (shadows/batch_transport.hpp).
 #pragma once
 
-#include <cstdint>
 #include <string>
 
 #include "gl/gl_objects.hpp"
+#include "shadows/batch_transport.hpp"
 #include "vk/shadow_tracer.hpp"
 
 namespace lgh {
@@ -19,9 +14,6 @@ namespace lgh {
 class RayBatchTransport {
  public:
   explicit RayBatchTransport(vk::ShadowTracer& tracer);
-  ~RayBatchTransport();
-  RayBatchTransport(const RayBatchTransport&) = delete;
-  RayBatchTransport& operator=(const RayBatchTransport&) = delete;
 
   struct GlBuffers {
     GLuint origins = 0;
@@ -38,32 +30,13 @@ class RayBatchTransport {
                const vk::TraceParams& params);
 
   // "interop" (semaphores), "interop-finish" or "staging".
-  std::string name() const;
+  std::string name() const { return transport_.name(); }
 
  private:
-  enum class Mode { Undecided, InteropSemaphores, InteropFinish, Staging };
-  struct Imported {
-    gl::MemoryObject memory = gl::MemoryObject::empty();
-    gl::Buffer buffer = gl::Buffer::empty();
-  };
-
-  void decide(const vk::RayBatchShape& shape);
-  bool importAll(const vk::RayBuffers& buffers);
-  bool importSemaphores();
-  void allocateStaging(const vk::RayBuffers& buffers);
+  BatchTransport::BuffersFor buffersFor(const vk::RayBatchShape& shape);
 
   vk::ShadowTracer& tracer_;
-  Mode mode_ = Mode::Undecided;
-  std::uint64_t generation_ = 0;
-  bool haveBuffers_ = false;
-  Imported origins_;
-  Imported targets_;
-  Imported visibility_;
-  gl::SizedBuffer stagingOrigins_;
-  gl::SizedBuffer stagingTargets_;
-  gl::SizedBuffer stagingVisibility_;
-  gl::Semaphore glDone_ = gl::Semaphore::empty();
-  gl::Semaphore vkDone_ = gl::Semaphore::empty();
+  BatchTransport transport_;
 };
 
 }  // namespace lgh

@@ -7,7 +7,8 @@
 
 #include "lgh/error.hpp"
 #include "vk/acceleration_scene.hpp"
-#include "vk/trace_barriers.hpp"
+#include "vk/spirv_shaders.hpp"
+#include "vk/trace_batch.hpp"
 #include "vk/vulkan_device.hpp"
 
 namespace lgh::vk {
@@ -17,15 +18,35 @@ namespace {
 constexpr std::uint32_t kSlots = 4;
 constexpr std::uint32_t kHitBuffers = 2;  // rays, hits
 
+// Rays per row of the launch: a 1D launch of a million rays would pass the limits of one
+// dimension on some devices, so batches launch rows of this many rays.
+constexpr std::uint32_t kHitLaunchWidth = 16384;
+
+// glsl/vk/closest_hit_query.comp: 64 rays per work group along a row of the launch, one row of
+// work groups per launch row.
+RayQueryProgram hitQueryProgram() {
+  return {.shader = spirv::closest_hit_query_comp(), .groupWidth = 64, .groupHeight = 1};
+}
+
+// glsl/vk/closest_hit.rgen launched per ray, closest_hit.rmiss its miss shader and
+// closest_hit.rchit the closest-hit shader of its one triangle hit group.
+PipelineProgram hitPipelineProgram() {
+  return {.rayGeneration = spirv::closest_hit_rgen(),
+          .miss = spirv::closest_hit_rmiss(),
+          .closestHit = spirv::closest_hit_rchit()};
+}
+
 }  // namespace
 
 HitTracer::HitTracer(const VulkanDevice& device, ::vk::ShaderStageFlags stages)
     : device_(&device),
       layout_(device, stages, kSlots, kHitBuffers, sizeof(HitPushConstants)),
       submissions_(device, kSlots) {
-  if (device.capabilities().rayQuery) rayQuery_ = createHitQueryRecorder(device, layout_);
+  if (device.capabilities().rayQuery) {
+    rayQuery_ = createRayQueryRecorder(device, layout_, hitQueryProgram());
+  }
   if (device.capabilities().rayTracingPipeline) {
-    pipeline_ = createHitPipelineRecorder(device, layout_);
+    pipeline_ = createRayTracingPipelineRecorder(device, layout_, hitPipelineProgram());
   }
 }
 
@@ -53,7 +74,7 @@ SemaphoreFds HitTracer::exportSemaphores() {
   return semaphores_->exportFds();
 }
 
-const HitRecorder& HitTracer::recorderFor(TracePath path) const {
+const TraceRecorder& HitTracer::recorderFor(TracePath path) const {
   const auto& recorder = path == TracePath::RayQuery ? rayQuery_ : pipeline_;
   if (!recorder) {
     throw Error(ErrorCode::Unavailable, fmt::format("traceHits: {} has no {} path",
@@ -64,7 +85,7 @@ const HitRecorder& HitTracer::recorderFor(TracePath path) const {
 
 void HitTracer::trace(const AccelerationScene& scene, TracePath path, const HitBatchShape& shape,
                       bool useSemaphores) {
-  const HitRecorder& recorder = recorderFor(path);
+  const TraceRecorder& recorder = recorderFor(path);
   checkHitBatch(shape.rays, device_->limits().maxStorageBufferRange);
   if (!buffers_.allocated() || !buffers_.fits(shape.rays, buffers_.shared().transport)) {
     throw Error(ErrorCode::Invalid,
@@ -78,31 +99,18 @@ void HitTracer::trace(const AccelerationScene& scene, TracePath path, const HitB
   const std::uint32_t slot = submissions_.acquire();
   const std::array<::vk::Buffer, kHitBuffers> shared{buffers_.rays(), buffers_.hits()};
   layout_.write(slot, scene.topLevel(), shared);
-  record(slot, recorder,
-         {.rayCount = shape.rays,
-          .anyHit = shape.query == HitQuery::Any ? 1U : 0U,
-          .launchWidth = std::min(shape.rays, kHitLaunchWidth)});
-  submissions_.submit(slot, useSemaphores ? semaphores_->glDone() : ::vk::Semaphore{},
-                      ::vk::PipelineStageFlagBits::eAllCommands,
-                      useSemaphores ? semaphores_->vkDone() : ::vk::Semaphore{});
-  if (!useSemaphores) submissions_.retire(slot);
-}
-
-void HitTracer::record(std::uint32_t slot, const HitRecorder& recorder,
-                       const HitPushConstants& constants) const {
-  const ::vk::raii::CommandBuffer& commands = submissions_.commands(slot);
-  const std::array<::vk::Buffer, kHitBuffers> shared{buffers_.rays(), buffers_.hits()};
-  const TraceBarrierScope scope{.traceStage = recorder.stage(),
-                                .transport = buffers_.shared().transport,
-                                .queueFamily = device_->queueFamily(),
-                                .buffers = shared};
-  commands.begin({.flags = ::vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-  submissions_.timestamps().begin(commands, slot);
-  recordBarriersBeforeTrace(commands, scope);
-  recorder.record(commands, layout_.set(slot), constants);
-  recordBarriersAfterTrace(commands, scope);
-  submissions_.timestamps().end(commands, slot);
-  commands.end();
+  const HitPushConstants constants{.rayCount = shape.rays,
+                                   .anyHit = shape.query == HitQuery::Any ? 1U : 0U,
+                                   .launchWidth = std::min(shape.rays, kHitLaunchWidth)};
+  const std::uint32_t rows = (shape.rays + kHitLaunchWidth - 1) / kHitLaunchWidth;
+  submitTraceBatch(submissions_, slot, device_->queueFamily(),
+                   {.recorder = &recorder,
+                    .set = layout_.set(slot),
+                    .constants = constantBytes(constants),
+                    .launch = {.width = constants.launchWidth, .height = rows},
+                    .transport = buffers_.shared().transport,
+                    .buffers = shared},
+                   useSemaphores ? &*semaphores_ : nullptr);
 }
 
 TraceTimings HitTracer::collectTimings() {

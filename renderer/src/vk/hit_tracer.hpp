@@ -9,9 +9,9 @@
 
 #include "vk/exported_semaphores.hpp"
 #include "vk/hit_buffer_set.hpp"
-#include "vk/hit_recorder.hpp"
 #include "vk/shadow_tracer.hpp"
 #include "vk/trace_layout.hpp"
+#include "vk/trace_recorder.hpp"
 #include "vk/trace_submissions.hpp"
 
 namespace lgh::vk {
@@ -31,14 +31,12 @@ class HitTracer {
   TraceTimings collectTimings();
 
  private:
-  const HitRecorder& recorderFor(TracePath path) const;
-  void record(std::uint32_t slot, const HitRecorder& recorder,
-              const HitPushConstants& constants) const;
+  const TraceRecorder& recorderFor(TracePath path) const;
 
   const VulkanDevice* device_;
   TraceLayout layout_;
-  std::unique_ptr<HitRecorder> rayQuery_;
-  std::unique_ptr<HitRecorder> pipeline_;
+  std::unique_ptr<TraceRecorder> rayQuery_;
+  std::unique_ptr<TraceRecorder> pipeline_;
   TraceSubmissions submissions_;
   HitBufferSet buffers_;
   std::optional<ExportedSemaphores> semaphores_;

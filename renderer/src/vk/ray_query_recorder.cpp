@@ -1,38 +1,39 @@
-// The ray-query path: glsl/vk/shadow_ray_query.comp, one invocation per pixel in 8 x 8 groups.
+// The ray-query path: a compute shader (glsl/vk/shadow_ray_query.comp, closest_hit_query.comp),
+// one invocation per ray or pixel of the launch, in work groups of the program's local size.
 #include "vk/shader_module.hpp"
-#include "vk/spirv_shaders.hpp"
 #include "vk/trace_recorder.hpp"
 #include "vk/vulkan_device.hpp"
 
 namespace lgh::vk {
 namespace {
 
-constexpr std::uint32_t kGroupSize = 8;  // local_size_x and _y in the shader
-
 class RayQueryRecorder final : public TraceRecorder {
  public:
-  RayQueryRecorder(const VulkanDevice& device, const TraceLayout& layout)
-      : layout_(&layout), pipeline_(createPipeline(device, layout)) {}
+  RayQueryRecorder(const VulkanDevice& device, const TraceLayout& layout,
+                   const RayQueryProgram& program)
+      : layout_(&layout),
+        groupWidth_(program.groupWidth),
+        groupHeight_(program.groupHeight),
+        pipeline_(createPipeline(device, layout, program.shader)) {}
 
   ::vk::PipelineStageFlags stage() const override {
     return ::vk::PipelineStageFlagBits::eComputeShader;
   }
 
   void record(const ::vk::raii::CommandBuffer& commands, ::vk::DescriptorSet set,
-              const TracePushConstants& constants) const override {
+              std::span<const std::byte> constants, TraceLaunch launch) const override {
     commands.bindPipeline(::vk::PipelineBindPoint::eCompute, *pipeline_);
     commands.bindDescriptorSets(::vk::PipelineBindPoint::eCompute, *layout_->pipelineLayout(), 0,
                                 set, nullptr);
     layout_->pushConstants(commands, constants);
-    commands.dispatch((constants.width + kGroupSize - 1) / kGroupSize,
-                      (constants.height + kGroupSize - 1) / kGroupSize, 1);
+    commands.dispatch((launch.width + groupWidth_ - 1) / groupWidth_,
+                      (launch.height + groupHeight_ - 1) / groupHeight_, 1);
   }
 
  private:
-  static ::vk::raii::Pipeline createPipeline(const VulkanDevice& device,
-                                             const TraceLayout& layout) {
-    const ::vk::raii::ShaderModule shader =
-        createShaderModule(device, spirv::shadow_ray_query_comp());
+  static ::vk::raii::Pipeline createPipeline(const VulkanDevice& device, const TraceLayout& layout,
+                                             std::span<const std::uint32_t> code) {
+    const ::vk::raii::ShaderModule shader = createShaderModule(device, code);
     return {device.device(), nullptr,
             ::vk::ComputePipelineCreateInfo{.stage = {.stage = ::vk::ShaderStageFlagBits::eCompute,
                                                       .module = *shader,
@@ -41,14 +42,17 @@ class RayQueryRecorder final : public TraceRecorder {
   }
 
   const TraceLayout* layout_;
+  std::uint32_t groupWidth_;
+  std::uint32_t groupHeight_;
   ::vk::raii::Pipeline pipeline_;
 };
 
 }  // namespace
 
 std::unique_ptr<TraceRecorder> createRayQueryRecorder(const VulkanDevice& device,
-                                                      const TraceLayout& layout) {
-  return std::make_unique<RayQueryRecorder>(device, layout);
+                                                      const TraceLayout& layout,
+                                                      const RayQueryProgram& program) {
+  return std::make_unique<RayQueryRecorder>(device, layout, program);
 }
 
 }  // namespace lgh::vk

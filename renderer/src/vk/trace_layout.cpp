@@ -111,8 +111,11 @@ void TraceLayout::write(std::uint32_t index, ::vk::AccelerationStructureKHR scen
 }
 
 void TraceLayout::pushConstants(const ::vk::raii::CommandBuffer& commands,
-                                const TracePushConstants& constants) const {
-  commands.pushConstants<TracePushConstants>(*pipelineLayout_, stages_, 0, constants);
+                                std::span<const std::byte> constants) const {
+  commands.pushConstants<std::byte>(
+      *pipelineLayout_, stages_, 0,
+      ::vk::ArrayProxy<const std::byte>(static_cast<std::uint32_t>(constants.size()),
+                                        constants.data()));
 }
 
 }  // namespace lgh::vk

@@ -4,6 +4,7 @@
 // batches (vk/hit_tracer.hpp) use the same layout with two buffers and their own constants.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -24,6 +25,15 @@ struct TracePushConstants {
   float endEpsilon = 0.0F;
 };
 static_assert(sizeof(TracePushConstants) == 28, "std430 push constants: 7 scalars");
+
+// HitConstants in glsl/vk/include/hit_rays.glsl: the closest-hit batches' constants.
+struct HitPushConstants {
+  std::uint32_t rayCount = 0;
+  std::uint32_t anyHit = 0;
+  std::uint32_t launchWidth = 0;  // rays per row of the 2D launch
+  std::uint32_t unused = 0;
+};
+static_assert(sizeof(HitPushConstants) == 16, "std430 push constants: 4 scalars");
 
 struct TraceBindings {
   ::vk::AccelerationStructureKHR scene;
@@ -47,13 +57,9 @@ class TraceLayout {
   // The same for a layout of buffers.size() buffers.
   void write(std::uint32_t index, ::vk::AccelerationStructureKHR scene,
              std::span<const ::vk::Buffer> buffers) const;
+  // Pushes a push-constant block (vk/trace_recorder.hpp: constantBytes).
   void pushConstants(const ::vk::raii::CommandBuffer& commands,
-                     const TracePushConstants& constants) const;
-  template <typename Constants>
-  void pushConstantsOf(const ::vk::raii::CommandBuffer& commands,
-                       const Constants& constants) const {
-    commands.pushConstants<Constants>(*pipelineLayout_, stages_, 0, constants);
-  }
+                     std::span<const std::byte> constants) const;
 
  private:
   const ::vk::raii::Device* device_;

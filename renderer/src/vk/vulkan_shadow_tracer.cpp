@@ -16,7 +16,8 @@
 #include "vk/physical_device.hpp"
 #include "vk/ray_buffer_set.hpp"
 #include "vk/shadow_tracer.hpp"
-#include "vk/trace_barriers.hpp"
+#include "vk/spirv_shaders.hpp"
+#include "vk/trace_batch.hpp"
 #include "vk/trace_layout.hpp"
 #include "vk/trace_recorder.hpp"
 #include "vk/trace_submissions.hpp"
@@ -52,6 +53,19 @@ TracePushConstants pushConstants(const RayBatchShape& shape, const TraceParams& 
           .endEpsilon = params.endEpsilon};
 }
 
+// glsl/vk/shadow_ray_query.comp: one invocation per pixel in 8 x 8 groups.
+RayQueryProgram shadowQueryProgram() {
+  return {.shader = spirv::shadow_ray_query_comp(), .groupWidth = 8, .groupHeight = 8};
+}
+
+// glsl/vk/shadow_ray.rgen launched once per pixel, with shadow_ray.rmiss as its only miss shader
+// and an empty hit group.
+PipelineProgram shadowPipelineProgram() {
+  return {.rayGeneration = spirv::shadow_ray_rgen(),
+          .miss = spirv::shadow_ray_rmiss(),
+          .closestHit = {}};
+}
+
 class VulkanShadowTracer final : public ShadowTracer {
  public:
   explicit VulkanShadowTracer(std::shared_ptr<const VulkanDevice> device)
@@ -60,8 +74,12 @@ class VulkanShadowTracer final : public ShadowTracer {
         layout_(*device_, traceStages(device_->capabilities()), kSlots),
         submissions_(*device_, kSlots),
         hits_(*device_, traceStages(device_->capabilities())) {
-    if (info_.rayQuery) rayQuery_ = createRayQueryRecorder(*device_, layout_);
-    if (info_.rayTracingPipeline) pipeline_ = createRayTracingPipelineRecorder(*device_, layout_);
+    if (info_.rayQuery) {
+      rayQuery_ = createRayQueryRecorder(*device_, layout_, shadowQueryProgram());
+    }
+    if (info_.rayTracingPipeline) {
+      pipeline_ = createRayTracingPipelineRecorder(*device_, layout_, shadowPipelineProgram());
+    }
   }
   ~VulkanShadowTracer() override { device_->waitIdleNoThrow(); }
   VulkanShadowTracer(const VulkanShadowTracer&) = delete;
@@ -114,12 +132,17 @@ class VulkanShadowTracer final : public ShadowTracer {
                            .origins = rayBuffers_.origins(),
                            .targets = rayBuffers_.targets(),
                            .visibility = rayBuffers_.visibility()});
-      record(slot, recorder, pushConstants(shape, params));
-      // All commands wait for GL, the first timestamp too: the GPU time is the trace's alone.
-      submissions_.submit(slot, useSemaphores ? semaphores_->glDone() : ::vk::Semaphore{},
-                          ::vk::PipelineStageFlagBits::eAllCommands,
-                          useSemaphores ? semaphores_->vkDone() : ::vk::Semaphore{});
-      if (!useSemaphores) submissions_.retire(slot);
+      const TracePushConstants constants = pushConstants(shape, params);
+      const std::array<::vk::Buffer, 3> shared{rayBuffers_.origins(), rayBuffers_.targets(),
+                                               rayBuffers_.visibility()};
+      submitTraceBatch(submissions_, slot, device_->queueFamily(),
+                       {.recorder = &recorder,
+                        .set = layout_.set(slot),
+                        .constants = constantBytes(constants),
+                        .launch = {.width = shape.width, .height = shape.height},
+                        .transport = rayBuffers_.shared().transport,
+                        .buffers = shared},
+                       useSemaphores ? &*semaphores_ : nullptr);
     });
   }
 
@@ -175,24 +198,6 @@ class VulkanShadowTracer final : public ShadowTracer {
     if (useSemaphores && !semaphores_) {
       throw Error(ErrorCode::Invalid, "trace: no semaphores to wait on: call exportSemaphores()");
     }
-  }
-
-  void record(std::uint32_t slot, const TraceRecorder& recorder,
-              const TracePushConstants& constants) const {
-    const ::vk::raii::CommandBuffer& commands = submissions_.commands(slot);
-    const std::array<::vk::Buffer, 3> shared{rayBuffers_.origins(), rayBuffers_.targets(),
-                                             rayBuffers_.visibility()};
-    const TraceBarrierScope scope{.traceStage = recorder.stage(),
-                                  .transport = rayBuffers_.shared().transport,
-                                  .queueFamily = device_->queueFamily(),
-                                  .buffers = shared};
-    commands.begin({.flags = ::vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-    submissions_.timestamps().begin(commands, slot);
-    recordBarriersBeforeTrace(commands, scope);
-    recorder.record(commands, layout_.set(slot), constants);
-    recordBarriersAfterTrace(commands, scope);
-    submissions_.timestamps().end(commands, slot);
-    commands.end();
   }
 
   std::shared_ptr<const VulkanDevice> device_;

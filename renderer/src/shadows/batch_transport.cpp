@@ -1,0 +1,233 @@
+#include "shadows/batch_transport.hpp"
+
+#include <unistd.h>
+
+#include <utility>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "core/stopwatch.hpp"
+#include "gl/gl_api.hpp"
+#include "lgh/error.hpp"
+
+namespace lgh {
+namespace {
+
+void clearGlErrors() {
+  while (glGetError() != GL_NO_ERROR) {
+  }
+}
+
+// Imports one Vulkan buffer's memory into a GL buffer. GL owns the fd once the import succeeds.
+bool importBuffer(const vk::SharedBuffer& shared, gl::MemoryObject& memory, gl::Buffer& buffer,
+                  std::string& failure) {
+  clearGlErrors();
+  memory = gl::MemoryObject();
+  if (shared.dedicated) {
+    const GLint dedicated = GL_TRUE;
+    glMemoryObjectParameterivEXT(memory.id(), GL_DEDICATED_MEMORY_OBJECT_EXT, &dedicated);
+  }
+  glImportMemoryFdEXT(memory.id(), shared.allocationSize, GL_HANDLE_TYPE_OPAQUE_FD_EXT, shared.fd);
+  if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
+    close(shared.fd);
+    failure = fmt::format("glImportMemoryFdEXT: GL error 0x{:x}", error);
+    return false;
+  }
+  buffer = gl::Buffer();
+  glNamedBufferStorageMemEXT(buffer.id(), static_cast<GLsizeiptr>(shared.size), memory.id(), 0);
+  if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
+    failure = fmt::format("glNamedBufferStorageMemEXT: GL error 0x{:x}", error);
+    return false;
+  }
+  return true;
+}
+
+// Silences the GL debug output while interop is tried: a failed import is an expected answer
+// (Mesa) and is logged once as a decision, not as a GL error.
+class QuietGlDebugOutput {
+ public:
+  QuietGlDebugOutput() : wasOn_(glIsEnabled(GL_DEBUG_OUTPUT) == GL_TRUE) {
+    if (wasOn_) glDisable(GL_DEBUG_OUTPUT);
+  }
+  ~QuietGlDebugOutput() {
+    if (wasOn_) glEnable(GL_DEBUG_OUTPUT);
+  }
+  QuietGlDebugOutput(const QuietGlDebugOutput&) = delete;
+  QuietGlDebugOutput& operator=(const QuietGlDebugOutput&) = delete;
+
+ private:
+  bool wasOn_;
+};
+
+bool glHasMemoryInterop() {
+  const gl::Api& api = gl::api("GL_EXT_memory_object_fd");
+  return api.EXT_memory_object != 0 && api.EXT_memory_object_fd != 0;
+}
+
+bool glHasSemaphoreInterop() {
+  const gl::Api& api = gl::api("GL_EXT_semaphore_fd");
+  return api.EXT_semaphore != 0 && api.EXT_semaphore_fd != 0;
+}
+
+}  // namespace
+
+BatchTransport::BatchTransport(vk::ShadowTracer& tracer, BatchLayout layout)
+    : tracer_(tracer),
+      layout_(std::move(layout)),
+      imported_(layout_.buffers.size()),
+      staging_(layout_.buffers.size()) {
+  if (layout_.buffers.empty() || layout_.buffers.size() > kMaxBatchBuffers) {
+    throw Error(ErrorCode::Internal, fmt::format("{}: a batch transport of {} buffers",
+                                                 layout_.logPrefix, layout_.buffers.size()));
+  }
+}
+BatchTransport::~BatchTransport() = default;
+
+std::string BatchTransport::name() const {
+  switch (mode_) {
+    case Mode::InteropSemaphores:
+      return "interop";
+    case Mode::InteropFinish:
+      return "interop-finish";
+    case Mode::Staging:
+      return "staging";
+    case Mode::Undecided:
+      break;
+  }
+  return "undecided";
+}
+
+void BatchTransport::decide(const BuffersFor& buffersFor) {
+  if (mode_ != Mode::Undecided) return;
+  std::string why;
+  if (!tracer_.info().externalMemoryFd) {
+    why = "the Vulkan device cannot export memory";
+  } else if (!glHasMemoryInterop()) {
+    why = "the GL context has no GL_EXT_memory_object_fd";
+  } else if (const BatchBuffers interop = buffersFor(vk::Transport::Interop); importAll(interop)) {
+    generation_ = interop.generation;
+    haveBuffers_ = true;
+    mode_ = importSemaphores() ? Mode::InteropSemaphores : Mode::InteropFinish;
+    spdlog::info("{}: {} handed over in shared GPU memory ({})", layout_.logPrefix, layout_.batches,
+                 name());
+    return;
+  } else {
+    why = "GL could not use the Vulkan memory";
+  }
+  mode_ = Mode::Staging;
+  spdlog::info("{}: {} handed over through staging copies: {}", layout_.logPrefix, layout_.batches,
+               why);
+}
+
+bool BatchTransport::importAll(const BatchBuffers& buffers) {
+  const QuietGlDebugOutput quiet;
+  std::string failure;
+  const std::size_t count = imported_.size();
+  for (std::size_t i = 0; i < count; ++i) {
+    Imported& imported = imported_[i];
+    if (importBuffer(*buffers.parts[i], imported.memory, imported.buffer, failure)) continue;
+    // The fds of the buffers not tried yet are still ours.
+    for (std::size_t rest = i + 1; rest < count; ++rest) close(buffers.parts[rest]->fd);
+    spdlog::info("{}: importing the {} into GL failed: {}", layout_.logPrefix, layout_.bufferNames,
+                 failure);
+    return false;
+  }
+  return true;
+}
+
+bool BatchTransport::importSemaphores() {
+  if (!tracer_.info().externalSemaphoreFd || !glHasSemaphoreInterop()) return false;
+  const vk::SemaphoreFds fds = (tracer_.*layout_.exportSemaphores)();
+  // GL owns an fd once its import succeeds; a failed one is still ours to close.
+  const auto import = [this](gl::Semaphore& semaphore, int fd) {
+    clearGlErrors();
+    semaphore = gl::Semaphore();
+    glImportSemaphoreFdEXT(semaphore.id(), GL_HANDLE_TYPE_OPAQUE_FD_EXT, fd);
+    const GLenum error = glGetError();
+    if (error == GL_NO_ERROR) return true;
+    close(fd);
+    spdlog::info("{}: importing a semaphore into GL failed (GL error 0x{:x})", layout_.logPrefix,
+                 error);
+    return false;
+  };
+  if (!import(glDone_, fds.glDone)) {
+    close(fds.vkDone);
+    return false;
+  }
+  return import(vkDone_, fds.vkDone);
+}
+
+std::span<const GLuint> BatchTransport::prepare(const BuffersFor& buffersFor) {
+  decide(buffersFor);
+  const std::size_t count = layout_.buffers.size();
+  if (mode_ == Mode::Staging) {
+    const BatchBuffers buffers = buffersFor(vk::Transport::Staging);
+    for (std::size_t i = 0; i < count; ++i) {
+      staging_[i].reserve(static_cast<GLsizeiptr>(buffers.parts[i]->size));
+      ids_[i] = staging_[i].id();
+    }
+    return {ids_.data(), count};
+  }
+  const BatchBuffers buffers = buffersFor(vk::Transport::Interop);
+  if (!haveBuffers_ || buffers.generation != generation_) {
+    if (!importAll(buffers)) {
+      throw Error(ErrorCode::Internal, fmt::format("{}: GL could not import the grown {}",
+                                                   layout_.logPrefix, layout_.bufferNames));
+    }
+    generation_ = buffers.generation;
+    haveBuffers_ = true;
+  }
+  for (std::size_t i = 0; i < count; ++i) ids_[i] = imported_[i].buffer.id();
+  return {ids_.data(), count};
+}
+
+std::pair<std::array<GLuint, kMaxBatchBuffers>, GLuint> BatchTransport::interopBuffers(
+    bool BatchBufferUse::*named) const {
+  std::array<GLuint, kMaxBatchBuffers> ids{};
+  GLuint count = 0;
+  for (std::size_t i = 0; i < layout_.buffers.size(); ++i) {
+    if (layout_.buffers[i].*named) ids[count++] = imported_[i].buffer.id();
+  }
+  return {ids, count};
+}
+
+double BatchTransport::trace(const BuffersFor& buffersFor, std::span<const std::uint64_t> bytes,
+                             const TraceOnVulkan& traceOnVulkan) {
+  if (bytes.size() != layout_.buffers.size()) {
+    throw Error(ErrorCode::Internal, fmt::format("{}: a batch traced with the sizes of {} buffers",
+                                                 layout_.logPrefix, bytes.size()));
+  }
+  const Stopwatch cpu;
+  if (mode_ == Mode::InteropSemaphores) {
+    const auto [signalled, signalCount] = interopBuffers(&BatchBufferUse::signalled);
+    glSignalSemaphoreEXT(glDone_.id(), signalCount, signalled.data(), 0, nullptr, nullptr);
+    glFlush();
+    traceOnVulkan(true);
+    const auto [waited, waitCount] = interopBuffers(&BatchBufferUse::waited);
+    glWaitSemaphoreEXT(vkDone_.id(), waitCount, waited.data(), 0, nullptr, nullptr);
+    return 0.0;
+  }
+  if (mode_ == Mode::InteropFinish) {
+    glFinish();
+    traceOnVulkan(false);
+    return cpu.elapsedMs();
+  }
+  const BatchBuffers buffers = buffersFor(vk::Transport::Staging);
+  const std::size_t count = layout_.buffers.size();
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!layout_.buffers[i].glWrites) continue;
+    glGetNamedBufferSubData(staging_[i].id(), 0, static_cast<GLsizeiptr>(bytes[i]),
+                            buffers.parts[i]->mapped);
+  }
+  traceOnVulkan(false);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (layout_.buffers[i].glWrites) continue;
+    glNamedBufferSubData(staging_[i].id(), 0, static_cast<GLsizeiptr>(bytes[i]),
+                         buffers.parts[i]->mapped);
+  }
+  return cpu.elapsedMs();
+}
+
+}  // namespace lgh

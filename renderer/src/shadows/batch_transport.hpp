@@ -1,0 +1,105 @@
+// The GL side of a trace batch whose buffers the Vulkan tracer owns (vk/shadow_tracer.hpp):
+//   interop   the Vulkan memory imported into GL buffers (GL_EXT_memory_object_fd): the batch
+//             never leaves the GPU. Synchronized with imported semaphores (GL_EXT_semaphore_fd)
+//             where both sides have them, else with glFinish and a fence.
+//   staging   GL buffers of its own, copied into and out of Vulkan's mapped host memory, where the
+//             drivers cannot share memory (Mesa: llvmpipe cannot back a buffer with lavapipe
+//             memory) - so CI still runs every step of the frame.
+// The transport is chosen once, on the first batch, by trying interop; the choice is logged.
+// One kind of batch differs from another only in its buffers and its words in the log
+// (BatchLayout): shadow rays (shadows/ray_batch_transport.hpp) and closest hits
+// (gi/hit_batch_transport.hpp) are this transport with their layouts.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "gl/gl_objects.hpp"
+#include "vk/shadow_tracer.hpp"
+
+namespace lgh {
+
+// One buffer of a batch, as GL uses it around a trace.
+struct BatchBufferUse {
+  // GL writes it before the trace (staging: copied to Vulkan before), else GL reads it after the
+  // trace (staging: copied back after).
+  bool glWrites = false;
+  bool signalled = false;  // named in the semaphore GL signals before the trace
+  bool waited = false;     // named in the semaphore GL waits on after the trace
+};
+
+struct BatchLayout {
+  std::string_view logPrefix;           // "shadows"
+  std::string_view batches;             // what is handed over, for the log: "rays"
+  std::string_view bufferNames;         // the buffers, for the log and errors: "ray buffers"
+  std::vector<BatchBufferUse> buffers;  // in the order of BatchBuffers::parts
+  // The tracer's semaphore export for this kind of batch.
+  vk::SemaphoreFds (vk::ShadowTracer::*exportSemaphores)() = nullptr;
+};
+
+inline constexpr std::size_t kMaxBatchBuffers = 3;
+
+// The tracer's buffers for one batch shape, in the layout's order.
+struct BatchBuffers {
+  std::uint64_t generation = 0;
+  std::array<const vk::SharedBuffer*, kMaxBatchBuffers> parts{};
+};
+
+class BatchTransport {
+ public:
+  // The tracer's buffers of the batch at hand in a transport (its rayBuffers or hitBuffers).
+  using BuffersFor = std::function<BatchBuffers(vk::Transport)>;
+  // Traces the batch at hand on the tracer, with or without the semaphores.
+  using TraceOnVulkan = std::function<void(bool useSemaphores)>;
+
+  BatchTransport(vk::ShadowTracer& tracer, BatchLayout layout);
+  ~BatchTransport();
+  BatchTransport(const BatchTransport&) = delete;
+  BatchTransport& operator=(const BatchTransport&) = delete;
+
+  // GL buffers that hold the batch, in the layout's order (reallocated as needed).
+  std::span<const GLuint> prepare(const BuffersFor& buffersFor);
+
+  // Hands what GL wrote to Vulkan, traces it, and makes what Vulkan wrote visible to GL's next
+  // commands. `bytes`: of each buffer the batch uses (the staging copies). Returns the CPU
+  // milliseconds spent copying (staging) and waiting (finish/fence); 0 with semaphores.
+  double trace(const BuffersFor& buffersFor, std::span<const std::uint64_t> bytes,
+               const TraceOnVulkan& traceOnVulkan);
+
+  // "interop" (semaphores), "interop-finish" or "staging".
+  std::string name() const;
+
+ private:
+  enum class Mode { Undecided, InteropSemaphores, InteropFinish, Staging };
+  struct Imported {
+    gl::MemoryObject memory = gl::MemoryObject::empty();
+    gl::Buffer buffer = gl::Buffer::empty();
+  };
+
+  void decide(const BuffersFor& buffersFor);
+  bool importAll(const BatchBuffers& buffers);
+  bool importSemaphores();
+  // The interop GL buffers whose use says `named` (signalled or waited), and how many.
+  std::pair<std::array<GLuint, kMaxBatchBuffers>, GLuint> interopBuffers(
+      bool BatchBufferUse::*named) const;
+
+  vk::ShadowTracer& tracer_;
+  BatchLayout layout_;
+  Mode mode_ = Mode::Undecided;
+  std::uint64_t generation_ = 0;
+  bool haveBuffers_ = false;
+  std::vector<Imported> imported_;
+  std::vector<gl::SizedBuffer> staging_;
+  std::array<GLuint, kMaxBatchBuffers> ids_{};
+  gl::Semaphore glDone_ = gl::Semaphore::empty();
+  gl::Semaphore vkDone_ = gl::Semaphore::empty();
+};
+
+}  // namespace lgh
