@@ -354,9 +354,15 @@ void RenderQueue::workerStateChanged(RenderWorker& worker) {
     std::lock_guard lock(mutex_);
     if (hung_) return;
   }
-  if (noneLeft && onFatal_) {
-    onFatal_(1, states.size() == 1 ? status.failure : describeWorkers(states));
+  if (!noneLeft || !onFatal_) return;
+  if (states.size() > 1) {
+    onFatal_(1, describeWorkers(states));
+    return;
   }
+  // One worker: the renderer's own words, as the exit reason has always been.
+  constexpr std::string_view kPrefix = "no working GL context: ";
+  const std::string& failure = status.failure;
+  onFatal_(1, failure.starts_with(kPrefix) ? failure.substr(kPrefix.size()) : failure);
 }
 
 // On the hung worker's watchdog thread, while its render thread is stuck: answer everyone on every

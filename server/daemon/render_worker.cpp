@@ -224,6 +224,7 @@ bool RenderWorker::bringUpRenderer() {
     std::lock_guard lock(mutex_);
     device_ = device;
     resident_.clear();
+    resident_.touch(sceneKey(selfTestRequest().scene));  // the self-test left it in the cache
   }
   logging::event(spdlog::level::info, "ready",
                  {{"gpu", options_.index},
