@@ -73,8 +73,8 @@ void gpuGaugeLines(std::string& out, const std::vector<GpuGauges>& gpus) {
   gpuFamily(out, "lghd_gpu_scene_cache_misses_total", "counter",
             "Scene cache lookups that loaded and uploaded the scene to this GPU.", gpus,
             [&](const GpuGauges& gpu) { return as(gpu.sceneCacheMisses); });
-  gpuFamily(out, "lghd_gpu_scene_cache_entries", "gauge", "Scenes held by this GPU's cache.",
-            gpus, [&](const GpuGauges& gpu) { return as(gpu.sceneCacheEntries); });
+  gpuFamily(out, "lghd_gpu_scene_cache_entries", "gauge", "Scenes held by this GPU's cache.", gpus,
+            [&](const GpuGauges& gpu) { return as(gpu.sceneCacheEntries); });
   gpuFamily(out, "lghd_gpu_scene_cache_bytes", "gauge", "GPU memory held by this GPU's cache.",
             gpus, [&](const GpuGauges& gpu) { return as(gpu.sceneCacheBytes); });
 }
@@ -133,8 +133,8 @@ void Metrics::recordRender(const std::string& outcome, int gpu) {
   if (gpu >= 0) ++gpuRenders_[fmt::format("gpu=\"{}\",outcome=\"{}\"", gpu, outcome)];
 }
 
-void Metrics::recordRenderTimes(const lgh::TimingTable& timings, double queueSeconds,
-                                bool cacheHit, int gpu) {
+void Metrics::recordRenderTimes(const lgh::TimingTable& timings, double queueSeconds, bool cacheHit,
+                                int gpu) {
   std::lock_guard lock(mutex_);
   queueWaitSeconds_.observe(queueSeconds);
   for (const lgh::TimingRow& row : timings.rows) {

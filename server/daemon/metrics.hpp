@@ -88,13 +88,13 @@ class Metrics {
  private:
   using Labels = std::string;
   mutable std::mutex mutex_;
-  std::map<Labels, std::uint64_t> requests_;    // route, method, status
-  std::map<Labels, Histogram> requestSeconds_;  // route
-  std::map<Labels, std::uint64_t> renders_;     // outcome
-  std::map<Labels, std::uint64_t> gpuRenders_;  // gpu, outcome
+  std::map<Labels, std::uint64_t> requests_;      // route, method, status
+  std::map<Labels, Histogram> requestSeconds_;    // route
+  std::map<Labels, std::uint64_t> renders_;       // outcome
+  std::map<Labels, std::uint64_t> gpuRenders_;    // gpu, outcome
   std::map<Labels, Histogram> gpuRenderSeconds_;  // gpu
-  std::map<Labels, Histogram> passSeconds_;     // pass, clock
-  std::map<Labels, Histogram> renderSeconds_;   // cache
+  std::map<Labels, Histogram> passSeconds_;       // pass, clock
+  std::map<Labels, Histogram> renderSeconds_;     // cache
   Histogram queueWaitSeconds_{{0.001, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 2.5, 5, 10, 30}};
   std::map<Labels, std::uint64_t> thumbnails_;  // status
   std::map<Labels, std::uint64_t> shadows_;     // shadows

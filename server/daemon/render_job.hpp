@@ -29,10 +29,10 @@ struct RenderJob {
 // The tickets of one job that one worker renders, in the job's order.
 struct JobPiece {
   std::shared_ptr<RenderJob> job;
-  std::size_t worker = 0;             // the render worker it goes to
-  std::vector<std::size_t> tickets;   // indices into job->tickets
-  std::vector<std::string> scenes;    // each ticket's scene key (render_scheduler.hpp)
-  std::vector<double> estimates;      // each ticket's estimated seconds on this worker
+  std::size_t worker = 0;            // the render worker it goes to
+  std::vector<std::size_t> tickets;  // indices into job->tickets
+  std::vector<std::string> scenes;   // each ticket's scene key (render_scheduler.hpp)
+  std::vector<double> estimates;     // each ticket's estimated seconds on this worker
 };
 
 }  // namespace lghd

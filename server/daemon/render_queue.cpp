@@ -58,7 +58,8 @@ void RenderQueue::start(FatalHandler onFatal) {
     if (static_cast<int>(i) == options_.testContextLossGpu) {
       worker.renderer.debugContextLossAfter = options_.testContextLossAfter;
     }
-    workers_.push_back(std::make_unique<RenderWorker>(std::move(worker), metrics_, *encoders_, hooks));
+    workers_.push_back(
+        std::make_unique<RenderWorker>(std::move(worker), metrics_, *encoders_, hooks));
   }
   for (const auto& worker : workers_) worker->start();
   // In a child process (see vulkan_probe_process.hpp), waited for on a thread of its own so that

@@ -44,7 +44,7 @@ std::string sceneKey(const lgh::SceneSource& scene) {
     case Kind::UploadedGltf: {
       std::size_t hash = std::hash<std::string>{}(scene.gltfFileName);
       for (const auto& [name, bytes] : scene.uploadedFiles) {
-        hash = hash * 31 + std::hash<std::string>{}(name) * 17 + hashBytes(bytes);
+        hash = hash * 31 + std::hash<std::string>{}(name)*17 + hashBytes(bytes);
       }
       return fmt::format("gltf:{:x}", hash);
     }

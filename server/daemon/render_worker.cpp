@@ -52,7 +52,9 @@ const char* workerStateName(RenderWorker::State state) {
 }
 
 RenderWorker::RenderWorker(Options options, Metrics& metrics, lgh::TaskPool& encoders, Hooks hooks)
-    : options_(std::move(options)), metrics_(metrics), encoders_(encoders),
+    : options_(std::move(options)),
+      metrics_(metrics),
+      encoders_(encoders),
       hooks_(std::move(hooks)) {}
 
 RenderWorker::~RenderWorker() {
@@ -117,9 +119,8 @@ RenderWorker::Status RenderWorker::status() const {
 bool RenderWorker::waitIdle(Clock::time_point deadline) {
   std::unique_lock lock(mutex_);
   if (state_ == State::Failed) return pieces_.empty() && !current_;  // nothing left can finish
-  return idleCondition_.wait_until(lock, deadline, [this] {
-    return pieces_.empty() && !current_ && framesOutstanding_ == 0;
-  });
+  return idleCondition_.wait_until(
+      lock, deadline, [this] { return pieces_.empty() && !current_ && framesOutstanding_ == 0; });
 }
 
 std::size_t RenderWorker::failAll(const ApiError& error) {
@@ -238,7 +239,8 @@ bool RenderWorker::bringUpRenderer() {
 // leaves scheduling first and gives its queued pieces back; the frames in flight on it fail, and
 // the encoders finish reading pixels from its read-back memory before it goes.
 void RenderWorker::recoverRenderer(const std::string& reason) {
-  logging::event(spdlog::level::err, "renderer_reset", {{"gpu", options_.index}, {"reason", reason}});
+  logging::event(spdlog::level::err, "renderer_reset",
+                 {{"gpu", options_.index}, {"reason", reason}});
   setState(State::Rebuilding, "rebuilding its GL context after: " + reason);
   std::deque<JobPiece> queued;
   {
@@ -247,8 +249,8 @@ void RenderWorker::recoverRenderer(const std::string& reason) {
     for (const JobPiece& piece : queued) pendingSeconds_ -= pieceSeconds(piece);
   }
   if (!queued.empty() && hooks_.piecesReturned) {
-    hooks_.piecesReturned(*this, {std::make_move_iterator(queued.begin()),
-                                  std::make_move_iterator(queued.end())});
+    hooks_.piecesReturned(
+        *this, {std::make_move_iterator(queued.begin()), std::make_move_iterator(queued.end())});
   }
   failFramesInFlight(
       internalError("the GL context failed while this frame was in flight: " + reason));

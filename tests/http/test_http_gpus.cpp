@@ -159,16 +159,17 @@ TEST_F(GpusTest, ConcurrentRendersSpreadOverTheWorkersAndNameTheirGpu) {
 }
 
 TEST_F(GpusTest, ASplitBatchComesBackCompleteInOrderAndEqualToOneWorkersImages) {
-  const json request = {{"assets",
-                         {"BoxTextured-glTF-Binary/BoxTextured.glb", "missing/Nothing.glb",
-                          "BoxTextured-glTF/BoxTextured.gltf", "2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
-                          "BoxTextured-glTF-Embedded/BoxTextured.gltf",
-                          "BoxTexcoords-glTF/boxTexcoords.gltf"}},
-                        {"views", {{{"name", "front"}, {"direction", {0, 0, 1}}},
-                                   {{"name", "side"}, {"direction", {1, 0.5, 0}}}}},
-                        {"width", 40},
-                        {"height", 40},
-                        {"format", "ndjson"}};
+  const json request = {
+      {"assets",
+       {"BoxTextured-glTF-Binary/BoxTextured.glb", "missing/Nothing.glb",
+        "BoxTextured-glTF/BoxTextured.gltf", "2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
+        "BoxTextured-glTF-Embedded/BoxTextured.gltf", "BoxTexcoords-glTF/boxTexcoords.gltf"}},
+      {"views",
+       {{{"name", "front"}, {"direction", {0, 0, 1}}},
+        {{"name", "side"}, {"direction", {1, 0.5, 0}}}}},
+      {"width", 40},
+      {"height", 40},
+      {"format", "ndjson"}};
   const std::vector<json> lines = ndjsonLines(thumbnailsNdjson(*http, request));
   const DaemonProcess single({"--gpus", "0"});
   auto singleHttp = single.client();
@@ -183,9 +184,9 @@ TEST_F(GpusTest, ASplitBatchComesBackCompleteInOrderAndEqualToOneWorkersImages) 
     if (lines[i]["status"] != "ok") continue;
     gpus.insert(lines[i]["gpu"].get<int>());
     EXPECT_EQ(reference[i]["gpu"], 0);
-    EXPECT_LE(meanDifference(unbase64(lines[i]["image_base64"]),
-                             unbase64(reference[i]["image_base64"])),
-              0.5)
+    EXPECT_LE(
+        meanDifference(unbase64(lines[i]["image_base64"]), unbase64(reference[i]["image_base64"])),
+        0.5)
         << lines[i]["file"];
   }
   EXPECT_EQ(lines[2]["status"], "error") << "the missing asset";
