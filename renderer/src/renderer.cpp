@@ -53,7 +53,11 @@ struct Renderer::Impl {
   explicit Impl(const RendererOptions& opts)
       : options(opts), context(GlContext::create(opts)), cache(opts), pipeline(&shadowDevice) {
     device = context->info();
-    if (const char* after = std::getenv("LGH_DEBUG_CONTEXT_LOSS_AFTER"); after != nullptr) {
+    if (opts.debugContextLossAfter >= 0) {
+      simulatedLossAfter = opts.debugContextLossAfter;
+      spdlog::warn("debugContextLossAfter: a context loss is reported after {} frames",
+                   simulatedLossAfter);
+    } else if (const char* after = std::getenv("LGH_DEBUG_CONTEXT_LOSS_AFTER"); after != nullptr) {
       simulatedLossAfter = std::atoi(after);
       spdlog::warn("LGH_DEBUG_CONTEXT_LOSS_AFTER: a context loss is reported after {} frames",
                    simulatedLossAfter);

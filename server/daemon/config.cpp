@@ -7,6 +7,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <spdlog/spdlog.h>
+
+#include "lgh/egl_devices.hpp"
 #include "lgh/task_pool.hpp"
 #include "version.hpp"
 
@@ -42,6 +45,8 @@ struct RawFlags {
   double jobTtlSeconds = 600.0;
   double jobDeadlineSeconds = 600.0;
   std::string corsOrigins;
+  std::string gpus;
+  std::string testContextLoss;
 };
 
 void addServerFlags(CLI::App& app, DaemonConfig& config, RawFlags& raw) {
@@ -146,6 +151,12 @@ void addRenderFlags(CLI::App& app, DaemonConfig& config, RawFlags& raw) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str()
       ->group(group);
+  app.add_option("--gpus", raw.gpus,
+                 "one render worker per listed EGL device, scheduled by load: 'all', or indices "
+                 "such as 0,2,3 (an index may repeat: two workers on one device). Default: one "
+                 "worker on --gpu")
+      ->envname("LGHD_GPUS")
+      ->group("GPU and context");
   app.add_option("--scene-worker", raw.sceneWorker,
                  "parse scene assets in a worker process (on), so that a parser crash fails one "
                  "request, not lghd; or in lghd's own process (off)")
@@ -157,6 +168,11 @@ void addRenderFlags(CLI::App& app, DaemonConfig& config, RawFlags& raw) {
                  "FOR TESTS ONLY: the scene parser worker crashes (SIGSEGV) on assets whose name "
                  "contains this text")
       ->envname("LGHD_TEST_SCENE_WORKER_CRASH_MARKER")
+      ->group("Testing");
+  app.add_option("--test-context-loss", raw.testContextLoss,
+                 "FOR TESTS ONLY: GPU:FRAMES, the first renderer of render worker GPU (its place "
+                 "in --gpus) reports a lost context after FRAMES frames")
+      ->envname("LGHD_TEST_CONTEXT_LOSS")
       ->group("Testing");
   app.add_option("--test-render-delay-ms", raw.testRenderDelayMs,
                  "FOR TESTS ONLY: sleep this long on the render thread before each render")
@@ -291,7 +307,61 @@ void applyRawFlags(const RawFlags& raw, DaemonConfig& config) {
   config.corsOrigins = splitOrigins(raw.corsOrigins);
 }
 
+// "GPU:FRAMES" of --test-context-loss.
+std::pair<int, int> parseContextLoss(const std::string& text) {
+  const auto colon = text.find(':');
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument(text);
+    return {std::stoi(text.substr(0, colon)), std::stoi(text.substr(colon + 1))};
+  } catch (const std::logic_error&) {
+    throw std::invalid_argument("--test-context-loss: expected GPU:FRAMES, got '" + text + "'");
+  }
+}
+
 }  // namespace
+
+GpuSelection parseGpuSelection(const std::string& text) {
+  GpuSelection selection;
+  if (text == "all") {
+    selection.all = true;
+    return selection;
+  }
+  std::stringstream stream(text);
+  for (std::string item; std::getline(stream, item, ',');) {
+    const auto begin = item.find_first_not_of(" \t");
+    const auto end = item.find_last_not_of(" \t");
+    const std::string index =
+        begin == std::string::npos ? std::string() : item.substr(begin, end - begin + 1);
+    if (index.empty() || index.size() > 4 ||
+        index.find_first_not_of("0123456789") != std::string::npos) {
+      throw std::invalid_argument("--gpus: '" + index +
+                                  "' is not an EGL device index (give 'all' or indices such as "
+                                  "0,2,3)");
+    }
+    selection.devices.push_back(std::stoi(index));
+  }
+  if (selection.devices.empty()) {
+    throw std::invalid_argument("--gpus: give 'all' or EGL device indices such as 0,2,3");
+  }
+  if (selection.devices.size() > 64) {
+    throw std::invalid_argument("--gpus: at most 64 render workers");
+  }
+  return selection;
+}
+
+std::vector<int> DaemonConfig::gpuList() const {
+  if (!allGpus) return gpus.empty() ? std::vector<int>{context.gpu} : gpus;
+  std::vector<int> devices;
+  try {
+    const int count = lgh::eglDeviceCount();
+    for (int i = 0; i < count; ++i) devices.push_back(i);
+  } catch (const std::exception& error) {
+    spdlog::warn("--gpus all: EGL cannot list its devices ({}); one render worker on --gpu {}",
+                 error.what(), context.gpu);
+  }
+  if (devices.empty()) devices.push_back(context.gpu);
+  return devices;
+}
 
 int OutputOptions::encoderCount() const {
   return encodeThreads > 0 ? encodeThreads : lgh::TaskPool::hardwareThreads();
@@ -354,6 +424,20 @@ ParsedConfig parseConfig(int argc, char** argv) {
     return {std::nullopt, code == 0 ? 0 : 2};
   }
   applyRawFlags(raw, config);
+  try {
+    if (!raw.gpus.empty()) {
+      const GpuSelection selection = parseGpuSelection(raw.gpus);
+      config.allGpus = selection.all;
+      config.gpus = selection.devices;
+    }
+    if (!raw.testContextLoss.empty()) {
+      std::tie(config.testContextLossGpu, config.testContextLossAfter) =
+          parseContextLoss(raw.testContextLoss);
+    }
+  } catch (const std::invalid_argument& error) {
+    std::cerr << "lghd: " << error.what() << "\n";
+    return {std::nullopt, 2};
+  }
   if (!raw.authTokenFile.empty() && config.authToken.empty()) {
     std::cerr << "lghd: the token file " << raw.authTokenFile << " is empty\n";
     return {std::nullopt, 2};

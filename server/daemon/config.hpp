@@ -76,10 +76,29 @@ struct DaemonConfig {
   JobLimits jobs;
   std::vector<std::string> corsOrigins;  // empty: no CORS; "*": any origin
   lgh::cli::ContextFlags context;
+  // --gpus: the EGL device of each render worker (a device may repeat); empty: one worker on
+  // --gpu. allGpus: one worker per EGL device (resolved at start, gpuList()).
+  std::vector<int> gpus;
+  bool allGpus = false;
+  // FOR TESTS ONLY (--test-context-loss GPU:FRAMES): that worker's first renderer reports a lost
+  // context after FRAMES frames.
+  int testContextLossGpu = -1;
+  int testContextLossAfter = -1;
 
   lgh::RendererOptions rendererOptions() const;
   lgh::RequestLimits requestLimits() const;
+  // Each render worker's EGL device. `all` asks EGL how many devices there are; where it cannot
+  // say (no device enumeration) that is logged and one worker runs on --gpu.
+  std::vector<int> gpuList() const;
 };
+
+// "all", or a comma-separated list of EGL device indices ("0,2,3"; "0,0": two workers on one
+// device). Throws std::invalid_argument with a message for people.
+struct GpuSelection {
+  bool all = false;
+  std::vector<int> devices;
+};
+GpuSelection parseGpuSelection(const std::string& text);
 
 // argv[1] of lghd started as the scene parser worker (argv[2]: the test crash marker, if any).
 inline constexpr const char* kSceneWorkerFlag = "--scene-parser-worker";

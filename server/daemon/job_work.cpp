@@ -87,6 +87,7 @@ class RenderWork final : public JobWork {
     result.width = request_.output.width;
     result.height = request_.output.height;
     result.queueMs = outcome_->queueMs;
+    result.gpu = outcome_->gpu;
     result.render =
         std::make_shared<const lgh::RenderResult>(withoutPixels(std::move(*outcome_->result)));
     result.mime = result.render->mimeType;

@@ -31,6 +31,7 @@ struct JobResult {
   int width = 0;
   int height = 0;
   double queueMs = 0.0;
+  int gpu = -1;  // the render worker it ran on (its place in --gpus)
   // Other kinds: the body, its media type and extra headers.
   std::string body;
   std::string mime;
@@ -44,6 +45,7 @@ struct RenderOutcome {
   std::optional<lgh::RenderResult> result;
   std::optional<ApiError> error;
   double queueMs = 0.0;
+  int gpu = -1;  // the render worker that rendered it (-1: none)
 };
 
 class JobWork {

@@ -306,6 +306,7 @@ RenderOutcome JobStore::renderOne(Job& job, const lgh::RenderRequest& request) {
   const Clock::time_point enqueued = renderJob->enqueued;
   const std::optional<Clock::time_point> started = ticket.started();
   outcome.queueMs = millisecondsBetween(enqueued, started.value_or(enqueued));
+  outcome.gpu = ticket.gpu();
   std::lock_guard lock(mutex_);
   job.inFlight.reset();
   if (outcome.result && started) {

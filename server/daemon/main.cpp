@@ -57,6 +57,7 @@ nlohmann::json startupFields(const DaemonConfig& config, int port) {
           {"port", port},
           {"backend", config.context.backend},
           {"gpu", config.context.gpu},
+          {"gpus", config.gpuList()},
           {"queue_depth", config.queueDepth},
           {"encode_threads", config.output.encoderCount()},
           {"frames_in_flight", config.output.frameLimit()},
@@ -68,7 +69,8 @@ int serve(const DaemonConfig& config) {
   ShutdownSupervisor::blockSignals();
   Metrics metrics;
   RenderQueue queue({config.rendererOptions(), static_cast<std::size_t>(config.queueDepth),
-                     config.testRenderDelay, config.watchdog, config.output},
+                     config.testRenderDelay, config.watchdog, config.output, config.gpuList(),
+                     config.testContextLossGpu, config.testContextLossAfter},
                     metrics);
   JobStore jobs(config.jobs, queue);
   HttpServer server;

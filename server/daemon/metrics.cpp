@@ -44,6 +44,41 @@ auto& entry(Map& map, const std::string& labels, Args&&... args) {
   return it->second;
 }
 
+// One family of per-worker values, a line per worker.
+template <class Value>
+void gpuFamily(std::string& out, const char* name, const char* type, const char* help,
+               const std::vector<GpuGauges>& gpus, Value value) {
+  header(out, name, type, help);
+  for (const GpuGauges& gpu : gpus) {
+    out += fmt::format("{}{{gpu=\"{}\"}} {}\n", name, gpu.index, number(value(gpu)));
+  }
+}
+
+void gpuGaugeLines(std::string& out, const std::vector<GpuGauges>& gpus) {
+  const auto as = [](auto value) { return static_cast<double>(value); };
+  gpuFamily(out, "lghd_gpu_ready", "gauge",
+            "1 while the render worker of this GPU (its place in --gpus) is up and scheduled.",
+            gpus, [](const GpuGauges& gpu) { return gpu.ready ? 1.0 : 0.0; });
+  gpuFamily(out, "lghd_gpu_queue_depth", "gauge", "Renders waiting for this GPU's render thread.",
+            gpus, [&](const GpuGauges& gpu) { return as(gpu.queuedRenders); });
+  gpuFamily(out, "lghd_gpu_render_in_progress", "gauge",
+            "1 while this GPU's render thread is rendering.", gpus,
+            [](const GpuGauges& gpu) { return gpu.rendering ? 1.0 : 0.0; });
+  gpuFamily(out, "lghd_gpu_frames_in_flight", "gauge",
+            "This GPU's frames between submission and the end of their encoding.", gpus,
+            [&](const GpuGauges& gpu) { return as(gpu.framesInFlight); });
+  gpuFamily(out, "lghd_gpu_scene_cache_hits_total", "counter",
+            "Scene cache lookups that hit, in this GPU's cache.", gpus,
+            [&](const GpuGauges& gpu) { return as(gpu.sceneCacheHits); });
+  gpuFamily(out, "lghd_gpu_scene_cache_misses_total", "counter",
+            "Scene cache lookups that loaded and uploaded the scene to this GPU.", gpus,
+            [&](const GpuGauges& gpu) { return as(gpu.sceneCacheMisses); });
+  gpuFamily(out, "lghd_gpu_scene_cache_entries", "gauge", "Scenes held by this GPU's cache.", gpus,
+            [&](const GpuGauges& gpu) { return as(gpu.sceneCacheEntries); });
+  gpuFamily(out, "lghd_gpu_scene_cache_bytes", "gauge", "GPU memory held by this GPU's cache.",
+            gpus, [&](const GpuGauges& gpu) { return as(gpu.sceneCacheBytes); });
+}
+
 }  // namespace
 
 std::string escapeLabel(const std::string& value) {
@@ -92,13 +127,14 @@ void Metrics::recordRequest(const std::string& route, const std::string& method,
   entry(requestSeconds_, routeLabel, kLatencyBuckets).observe(seconds);
 }
 
-void Metrics::recordRender(const std::string& outcome) {
+void Metrics::recordRender(const std::string& outcome, int gpu) {
   std::lock_guard lock(mutex_);
   ++renders_[fmt::format("outcome=\"{}\"", outcome)];
+  if (gpu >= 0) ++gpuRenders_[fmt::format("gpu=\"{}\",outcome=\"{}\"", gpu, outcome)];
 }
 
-void Metrics::recordRenderTimes(const lgh::TimingTable& timings, double queueSeconds,
-                                bool cacheHit) {
+void Metrics::recordRenderTimes(const lgh::TimingTable& timings, double queueSeconds, bool cacheHit,
+                                int gpu) {
   std::lock_guard lock(mutex_);
   queueWaitSeconds_.observe(queueSeconds);
   for (const lgh::TimingRow& row : timings.rows) {
@@ -107,6 +143,10 @@ void Metrics::recordRenderTimes(const lgh::TimingTable& timings, double queueSec
       entry(renderSeconds_, cacheHit ? "scene_cache=\"hit\"" : "scene_cache=\"miss\"",
             kLatencyBuckets)
           .observe(row.milliseconds / 1000.0);
+      if (gpu >= 0) {
+        entry(gpuRenderSeconds_, fmt::format("gpu=\"{}\"", gpu), kLatencyBuckets)
+            .observe(row.milliseconds / 1000.0);
+      }
       continue;
     }
     const char* clock = row.clock == lgh::TimingRow::Clock::Gpu ? "gpu" : "cpu";
@@ -187,6 +227,8 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
         "Read-back memory held by frames in flight (their pixels, until encoded).",
         static_cast<double>(gauges.readbackBytes));
 
+  gpuGaugeLines(out, gauges.gpus);
+
   std::lock_guard lock(mutex_);
   header(out, "lghd_http_requests_total", "counter",
          "HTTP requests answered, by route and status.");
@@ -221,6 +263,12 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
          "Renders by how their shadows were traced: ray-query, pipeline, none (the machine cannot "
          "trace: unshadowed with a warning), off (the request asked for none).");
   counterLines(out, "lghd_render_shadows_total", shadows_);
+  header(out, "lghd_gpu_renders_total", "counter",
+         "Renders by render worker (gpu: its place in --gpus) and outcome, as lghd_renders_total.");
+  counterLines(out, "lghd_gpu_renders_total", gpuRenders_);
+  header(out, "lghd_gpu_render_duration_seconds", "histogram",
+         "Render time (the \"total\" row) by render worker.");
+  histogramLines(out, "lghd_gpu_render_duration_seconds", gpuRenderSeconds_);
   return out;
 }
 

@@ -29,7 +29,20 @@ class Histogram {
   std::uint64_t count_ = 0;
 };
 
-// Values read at scrape time from the queue and the renderer.
+// One render worker's values (its GPU: its place in --gpus), read at scrape time.
+struct GpuGauges {
+  int index = 0;
+  bool ready = false;
+  std::size_t queuedRenders = 0;
+  bool rendering = false;
+  std::uint64_t sceneCacheHits = 0;
+  std::uint64_t sceneCacheMisses = 0;
+  std::size_t sceneCacheEntries = 0;
+  std::size_t sceneCacheBytes = 0;
+  std::size_t framesInFlight = 0;
+};
+
+// Values read at scrape time from the queue and the renderers (totals over the workers).
 struct RuntimeGauges {
   std::size_t queueDepth = 0;
   std::size_t queueCapacity = 0;
@@ -49,6 +62,7 @@ struct RuntimeGauges {
   std::size_t frameLimit = 0;
   std::size_t encodeThreads = 0;
   std::size_t readbackBytes = 0;
+  std::vector<GpuGauges> gpus;  // each render worker's (lghd_gpu_* families)
 };
 
 class Metrics {
@@ -58,8 +72,10 @@ class Metrics {
                      double seconds);
   // One render finished on the render thread: "ok", "error", "timeout" (the client was gone by
   // then: result discarded) or "skipped" (never started: deadline passed or cancelled).
-  void recordRender(const std::string& outcome);
-  void recordRenderTimes(const lgh::TimingTable& timings, double queueSeconds, bool cacheHit);
+  // `gpu` (>= 0): the render worker, counted in lghd_gpu_renders_total too.
+  void recordRender(const std::string& outcome, int gpu = -1);
+  void recordRenderTimes(const lgh::TimingTable& timings, double queueSeconds, bool cacheHit,
+                         int gpu = -1);
   // How a render's shadows were made (its decision "shadows": ray-query, pipeline, none, off).
   void recordShadows(const std::string& shadows);
   void recordThumbnail(const std::string& status);
@@ -72,11 +88,13 @@ class Metrics {
  private:
   using Labels = std::string;
   mutable std::mutex mutex_;
-  std::map<Labels, std::uint64_t> requests_;    // route, method, status
-  std::map<Labels, Histogram> requestSeconds_;  // route
-  std::map<Labels, std::uint64_t> renders_;     // outcome
-  std::map<Labels, Histogram> passSeconds_;     // pass, clock
-  std::map<Labels, Histogram> renderSeconds_;   // cache
+  std::map<Labels, std::uint64_t> requests_;      // route, method, status
+  std::map<Labels, Histogram> requestSeconds_;    // route
+  std::map<Labels, std::uint64_t> renders_;       // outcome
+  std::map<Labels, std::uint64_t> gpuRenders_;    // gpu, outcome
+  std::map<Labels, Histogram> gpuRenderSeconds_;  // gpu
+  std::map<Labels, Histogram> passSeconds_;       // pass, clock
+  std::map<Labels, Histogram> renderSeconds_;     // cache
   Histogram queueWaitSeconds_{{0.001, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 2.5, 5, 10, 30}};
   std::map<Labels, std::uint64_t> thumbnails_;  // status
   std::map<Labels, std::uint64_t> shadows_;     // shadows

@@ -1,7 +1,9 @@
 #include "render_queue.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -12,36 +14,57 @@
 namespace lghd {
 namespace {
 
-// What a renderer start-up (GL context, Vulkan device, self-test render) may take before the
-// watchdog's time starts to count, as a render's deadline does for a render.
-constexpr auto kStartUpAllowance = std::chrono::seconds(30);
+bool anyIn(const std::vector<RenderWorker::Status>& workers, RenderWorker::State state) {
+  return std::any_of(workers.begin(), workers.end(),
+                     [state](const RenderWorker::Status& worker) { return worker.state == state; });
+}
 
-lgh::RenderRequest selfTestRequest() {
-  lgh::RenderRequest request;  // the demo scene
-  request.output.width = 64;
-  request.output.height = 64;
-  return request;
+std::string describeWorkers(const std::vector<RenderWorker::Status>& workers) {
+  std::string text;
+  for (const RenderWorker::Status& worker : workers) {
+    if (!text.empty()) text += "; ";
+    text += fmt::format("gpu {}: {}", worker.index, workerStateName(worker.state));
+    if (!worker.failure.empty()) text += " (" + worker.failure + ")";
+  }
+  return text;
 }
 
 }  // namespace
 
 RenderQueue::RenderQueue(Options options, Metrics& metrics)
-    : options_(std::move(options)), metrics_(metrics) {}
+    : options_(std::move(options)), metrics_(metrics) {
+  if (options_.gpus.empty()) options_.gpus.push_back(options_.renderer.gpuIndex);
+}
 
 RenderQueue::~RenderQueue() {
-  if (thread_.joinable()) stop(std::chrono::seconds(30));
+  if (!workers_.empty()) stop(std::chrono::seconds(30));
   endVulkanProbe();
 }
 
 void RenderQueue::start(FatalHandler onFatal) {
   onFatal_ = std::move(onFatal);
-  if (options_.watchdog.count() > 0) {
-    watchdog_ = std::make_unique<RenderWatchdog>([this] { declareHung(); });
+  encoders_ = std::make_unique<lgh::TaskPool>(options_.output.encoderCount());
+  RenderWorker::Hooks hooks;
+  hooks.stateChanged = [this](RenderWorker& worker) { workerStateChanged(worker); };
+  hooks.piecesReturned = [this](RenderWorker& worker, std::vector<JobPiece> pieces) {
+    piecesReturned(worker, std::move(pieces));
+  };
+  hooks.pieceLeft = [this](RenderJob& job) { pieceLeft(job); };
+  hooks.hung = [this](RenderWorker& worker) { declareHung(worker); };
+  for (std::size_t i = 0; i < options_.gpus.size(); ++i) {
+    RenderWorker::Options worker{static_cast<int>(i), options_.renderer, options_.testRenderDelay,
+                                 options_.watchdog, options_.output};
+    worker.renderer.gpuIndex = options_.gpus[i];
+    if (static_cast<int>(i) == options_.testContextLossGpu) {
+      worker.renderer.debugContextLossAfter = options_.testContextLossAfter;
+    }
+    workers_.push_back(
+        std::make_unique<RenderWorker>(std::move(worker), metrics_, *encoders_, hooks));
   }
-  thread_ = std::thread([this] { run(); });
+  for (const auto& worker : workers_) worker->start();
   // In a child process (see vulkan_probe_process.hpp), waited for on a thread of its own so that
   // readiness does not wait for it (a Vulkan instance takes a large part of a second to make). It
-  // starts once the renderer is up: run beside the GL bring-up, it slowed the start-up
+  // starts once a renderer is up: run beside the GL bring-up, it slowed the start-up
   // (docs/BENCHMARKS.md, "Start-up").
   vulkanProbe_ = std::thread([slot = vulkan_] {
     {
@@ -101,48 +124,119 @@ std::shared_ptr<RenderJob> RenderQueue::submit(std::vector<lgh::RenderRequest> r
   job->requestId = requestId;
   job->enqueued = Clock::now();
   job->startDeadline = startDeadline;
+  std::vector<std::size_t> tickets;
   for (auto& request : requests) {
+    tickets.push_back(job->tickets.size());
     job->tickets.push_back(std::make_shared<RenderTicket>(std::move(request)));
   }
-  {
-    std::lock_guard lock(mutex_);
-    if (!accepting_) throw unavailable("the daemon is shutting down");
-    if (state_ == State::Starting) {
+  std::lock_guard lock(mutex_);
+  if (!accepting_) throw unavailable("the daemon is shutting down");
+  if (hung_) throw unavailable(hungReason_);
+  if (workers_.empty()) {
+    throw unavailable("starting: the GL context and its self-test render are not ready yet")
+        .withRetryAfter(1);
+  }
+  if (waitingJobs_ >= options_.capacity) {
+    throw queueFull(fmt::format("the render queue is full ({} waiting)", waitingJobs_),
+                    retryAfterSeconds());
+  }
+  if (tickets.empty()) return job;
+  std::vector<JobPiece> pieces = assign(job, std::move(tickets));
+  if (pieces.empty()) {
+    const std::vector<RenderWorker::Status> states = workers();
+    if (anyIn(states, RenderWorker::State::Starting)) {
       throw unavailable("starting: the GL context and its self-test render are not ready yet")
           .withRetryAfter(1);
     }
-    if (state_ == State::Failed) throw unavailable(failure_);
-    if (jobs_.size() >= options_.capacity) {
-      throw queueFull(fmt::format("the render queue is full ({} waiting)", jobs_.size()),
-                      retryAfterSeconds());
+    if (anyIn(states, RenderWorker::State::Rebuilding)) {
+      throw unavailable("every GPU's render worker is rebuilding its GL context").withRetryAfter(1);
     }
-    jobs_.push_back(job);
+    throw unavailable(states.size() == 1 ? states.front().failure : describeWorkers(states));
   }
-  workCondition_.notify_one();
+  job->piecesWaiting = pieces.size();
+  ++waitingJobs_;
+  dispatch(std::move(pieces));
   return job;
 }
 
+// Each ticket in order goes to the worker that finishes it soonest, counting what this job has
+// given each worker already (its work, and its scenes as resident there).
+std::vector<JobPiece> RenderQueue::assign(const std::shared_ptr<RenderJob>& job,
+                                          std::vector<std::size_t> tickets) const {
+  const std::size_t count = workers_.size();
+  std::vector<JobPiece> pieces(count);
+  std::vector<double> added(count, 0.0);
+  std::vector<std::set<std::string>> planned(count);
+  for (std::size_t ticket : tickets) {
+    const std::string scene = sceneKey(job->tickets[ticket]->request().scene);
+    std::vector<WorkerEstimate> estimates;
+    estimates.reserve(count);
+    for (std::size_t w = 0; w < count; ++w) {
+      WorkerEstimate estimate = workers_[w]->estimate(scene);
+      estimate.pendingSeconds += added[w];
+      estimate.resident = estimate.resident || planned[w].count(scene) > 0;
+      estimates.push_back(estimate);
+    }
+    const std::optional<std::size_t> chosen = chooseWorker(estimates);
+    if (!chosen) return {};
+    const double seconds = estimates[*chosen].renderSeconds();
+    JobPiece& piece = pieces[*chosen];
+    piece.job = job;
+    piece.worker = *chosen;
+    piece.tickets.push_back(ticket);
+    piece.scenes.push_back(scene);
+    piece.estimates.push_back(seconds);
+    added[*chosen] += seconds;
+    planned[*chosen].insert(scene);
+  }
+  std::erase_if(pieces, [](const JobPiece& piece) { return piece.tickets.empty(); });
+  return pieces;
+}
+
+void RenderQueue::dispatch(std::vector<JobPiece> pieces) {
+  for (JobPiece& piece : pieces) {
+    const std::size_t worker = piece.worker;
+    workers_[worker]->enqueue(std::move(piece));
+  }
+}
+
 int RenderQueue::retryAfterSeconds() const {
-  const double wait = averageRenderSeconds_ * static_cast<double>(jobs_.size() + 1);
+  double seconds = 0.0;
+  std::size_t ready = 0;
+  for (const auto& worker : workers_) {
+    const RenderWorker::Status status = worker->status();
+    if (status.state != RenderWorker::State::Ready) continue;
+    seconds += status.averageRenderSeconds;
+    ++ready;
+  }
+  const double average = ready > 0 ? seconds / static_cast<double>(ready) : 0.1;
+  const double wait = average * static_cast<double>(waitingJobs_ + 1) /
+                      static_cast<double>(std::max<std::size_t>(ready, 1));
   return std::max(1, static_cast<int>(std::ceil(wait)));
 }
 
-bool RenderQueue::ready() const {
-  std::lock_guard lock(mutex_);
-  return state_ == State::Ready && accepting_;
-}
+bool RenderQueue::ready() const { return notReadyReason().empty(); }
 
 std::string RenderQueue::notReadyReason() const {
-  std::lock_guard lock(mutex_);
-  if (!accepting_) return "shutting down";
-  switch (state_) {
-    case State::Starting:
-      return "starting: GL context and self-test render not done yet";
-    case State::Failed:
-      return failure_;
-    default:
-      return "";
+  {
+    std::lock_guard lock(mutex_);
+    if (!accepting_) return "shutting down";
+    if (hung_) return hungReason_;
   }
+  const std::vector<RenderWorker::Status> states = workers();
+  if (states.empty() || std::all_of(states.begin(), states.end(), [](const auto& worker) {
+        return worker.state == RenderWorker::State::Starting;
+      })) {
+    return "starting: GL context and self-test render not done yet";
+  }
+  if (anyIn(states, RenderWorker::State::Ready)) return "";
+  if (states.size() == 1) {
+    const RenderWorker::Status& only = states.front();
+    return only.state == RenderWorker::State::Failed
+               ? only.failure
+               : "starting: GL context and self-test render not done yet";
+  }
+  return "no GPU's render worker is ready: " + describeWorkers(states);
 }
 
 std::optional<lgh::VulkanInfo> RenderQueue::vulkan() const {
@@ -150,33 +244,149 @@ std::optional<lgh::VulkanInfo> RenderQueue::vulkan() const {
   return vulkan_->info;
 }
 
+std::vector<RenderWorker::Status> RenderQueue::workers() const {
+  std::vector<RenderWorker::Status> states;
+  states.reserve(workers_.size());
+  for (const auto& worker : workers_) states.push_back(worker->status());
+  return states;
+}
+
 std::optional<lgh::DeviceInfo> RenderQueue::device() const {
-  std::lock_guard lock(mutex_);
-  return device_;
+  const std::vector<RenderWorker::Status> states = workers();
+  for (const RenderWorker::Status& worker : states) {
+    if (worker.state == RenderWorker::State::Ready && worker.device) return worker.device;
+  }
+  for (const RenderWorker::Status& worker : states) {
+    if (worker.device) return worker.device;
+  }
+  return std::nullopt;
 }
 
 RuntimeGauges RenderQueue::gauges() const {
-  std::lock_guard lock(mutex_);
   RuntimeGauges gauges;
-  gauges.queueDepth = jobs_.size();
+  const std::vector<RenderWorker::Status> states = workers();
+  gauges.ready = ready();
+  {
+    std::lock_guard lock(mutex_);
+    gauges.queueDepth = waitingJobs_;
+  }
   gauges.queueCapacity = options_.capacity;
-  gauges.rendering = current_ != nullptr;
-  gauges.ready = state_ == State::Ready && accepting_;
-  gauges.sceneCacheHits = cacheStats_.hits;
-  gauges.sceneCacheMisses = cacheStats_.misses;
-  gauges.sceneCacheEntries = cacheStats_.entries;
-  gauges.sceneCacheBytes = cacheStats_.bytes;
-  gauges.sceneCacheBudgetBytes = options_.renderer.sceneCacheBytes;
-  gauges.resources = resources_;
-  gauges.framesInFlight = framesOutstanding_;
-  gauges.frameLimit = options_.output.frameLimit();
+  gauges.frameLimit = options_.output.frameLimit() * std::max<std::size_t>(states.size(), 1);
   gauges.encodeThreads = static_cast<std::size_t>(options_.output.encoderCount());
-  // Live: frames give their read-back memory back on encoder threads, after the last publish.
-  gauges.readbackBytes = renderer_ ? renderer_->readbackStats().heldBytes : 0;
-  gauges.shadowTracer = shadowInfo_.status == "ready"         ? 1
-                        : shadowInfo_.status == "unavailable" ? 0
-                                                              : -1;
+  for (const RenderWorker::Status& worker : states) {
+    gauges.rendering = gauges.rendering || worker.rendering;
+    gauges.sceneCacheHits += worker.cache.hits;
+    gauges.sceneCacheMisses += worker.cache.misses;
+    gauges.sceneCacheEntries += worker.cache.entries;
+    gauges.sceneCacheBytes += worker.cache.bytes;
+    gauges.sceneCacheBudgetBytes += options_.renderer.sceneCacheBytes;
+    gauges.framesInFlight += worker.framesInFlight;
+    gauges.readbackBytes += worker.readbackBytes;
+    GpuGauges gpu;
+    gpu.index = worker.index;
+    gpu.ready = worker.state == RenderWorker::State::Ready;
+    gpu.queuedRenders = worker.queuedRenders;
+    gpu.rendering = worker.rendering;
+    gpu.sceneCacheHits = worker.cache.hits;
+    gpu.sceneCacheMisses = worker.cache.misses;
+    gpu.sceneCacheEntries = worker.cache.entries;
+    gpu.sceneCacheBytes = worker.cache.bytes;
+    gpu.framesInFlight = worker.framesInFlight;
+    gauges.gpus.push_back(gpu);
+  }
+  if (!states.empty()) {
+    const RenderWorker::Status& first = states.front();
+    gauges.resources = first.resources;
+    gauges.shadowTracer = first.shadows.status == "ready"         ? 1
+                          : first.shadows.status == "unavailable" ? 0
+                                                                  : -1;
+  }
   return gauges;
+}
+
+lgh::ShadowInfo RenderQueue::shadows() const {
+  return workers_.empty() ? lgh::ShadowInfo{} : workers_.front()->status().shadows;
+}
+
+lgh::ResourceStats RenderQueue::resources() const {
+  return workers_.empty() ? lgh::ResourceStats{} : workers_.front()->status().resources;
+}
+
+// --- Worker threads -----------------------------------------------------------------------------
+
+void RenderQueue::pieceLeft(RenderJob& job) {
+  if (job.piecesWaiting.fetch_sub(1) != 1) return;
+  std::lock_guard lock(mutex_);
+  --waitingJobs_;
+}
+
+// A worker going out of scheduling gives its queued pieces back: they go to the other workers,
+// or wait for it when there are none.
+void RenderQueue::piecesReturned(RenderWorker& from, std::vector<JobPiece> pieces) {
+  std::lock_guard lock(mutex_);
+  for (JobPiece& piece : pieces) {
+    std::vector<JobPiece> spread = assign(piece.job, piece.tickets);
+    if (spread.empty()) {
+      from.enqueue(std::move(piece));
+      continue;
+    }
+    piece.job->piecesWaiting += spread.size() - 1;
+    logging::event(spdlog::level::info, "renders_moved",
+                   {{"request_id", piece.job->requestId},
+                    {"from_gpu", from.index()},
+                    {"renders", piece.tickets.size()}});
+    dispatch(std::move(spread));
+  }
+}
+
+void RenderQueue::workerStateChanged(RenderWorker& worker) {
+  const RenderWorker::Status status = worker.status();
+  logging::event(spdlog::level::info, "gpu_state",
+                 {{"gpu", status.index}, {"state", workerStateName(status.state)}});
+  if (status.state == RenderWorker::State::Ready || status.state == RenderWorker::State::Failed) {
+    releaseVulkanProbe();
+  }
+  if (status.state != RenderWorker::State::Failed) return;
+  const std::vector<RenderWorker::Status> states = workers();
+  const bool noneLeft = std::all_of(states.begin(), states.end(), [](const auto& other) {
+    return other.state == RenderWorker::State::Failed;
+  });
+  {
+    std::lock_guard lock(mutex_);
+    if (hung_) return;
+  }
+  if (!noneLeft || !onFatal_) return;
+  if (states.size() > 1) {
+    onFatal_(1, describeWorkers(states));
+    return;
+  }
+  // One worker: the renderer's own words, as the exit reason has always been.
+  constexpr std::string_view kPrefix = "no working GL context: ";
+  const std::string& failure = status.failure;
+  onFatal_(1, failure.starts_with(kPrefix) ? failure.substr(kPrefix.size()) : failure);
+}
+
+// On the hung worker's watchdog thread, while its render thread is stuck: answer everyone on every
+// worker, turn not ready and have the process end (a context stuck in a driver call cannot be
+// replaced in this process, and the process is what the supervisor restarts).
+void RenderQueue::declareHung(RenderWorker& worker) {
+  const auto seconds = std::chrono::duration<double>(options_.watchdog).count();
+  const std::string reason = fmt::format(
+      "the render thread of GPU {} has been stuck in one render (or renderer start-up) for {:g} s "
+      "past its deadline (--watchdog-seconds): the GPU or its driver hangs; lghd exits so that "
+      "its supervisor starts it again",
+      worker.index(), seconds);
+  {
+    std::lock_guard lock(mutex_);
+    hung_ = true;
+    hungReason_ = reason;
+  }
+  worker.markHung(reason);
+  const ApiError hung = unavailable(reason).withRetryAfter(5);
+  for (const auto& each : workers_) each->failAll(hung);
+  logging::event(spdlog::level::critical, "render_hung",
+                 {{"gpu", worker.index()}, {"watchdog_s", seconds}, {"reason", reason}});
+  if (onFatal_) onFatal_(kExitRenderHung, reason);
 }
 
 // --- Shutdown -----------------------------------------------------------------------------------
@@ -186,386 +396,35 @@ void RenderQueue::stopAccepting() {
   accepting_ = false;
 }
 
-void RenderQueue::failAll(RenderJob& job, const ApiError& error) {
-  job.cancelled = true;
-  for (const auto& ticket : job.tickets) ticket->fail(error);
-}
-
 bool RenderQueue::drain(Clock::duration grace) {
-  std::unique_lock lock(mutex_);
-  if (state_ == State::Failed) return jobs_.empty() && !current_;  // nothing left can finish
-  const bool idle = idleCondition_.wait_for(
-      lock, grace, [this] { return jobs_.empty() && !current_ && framesOutstanding_ == 0; });
+  const Clock::time_point deadline = Clock::now() + grace;
+  bool idle = true;
+  for (const auto& worker : workers_) idle = worker->waitIdle(deadline) && idle;
   if (idle) return true;
   const ApiError cancelled = unavailable("the daemon is shutting down: render cancelled");
+  std::size_t frames = 0;
+  for (const RenderWorker::Status& status : workers()) frames += status.framesInFlight;
+  std::size_t jobs = 0;
+  for (const auto& worker : workers_) jobs += worker->failAll(cancelled);
   logging::event(spdlog::level::warn, "drain_timeout",
-                 {{"cancelled_jobs", jobs_.size() + (current_ ? 1 : 0)},
-                  {"frames_in_flight", framesOutstanding_}});
-  for (const auto& job : jobs_) failAll(*job, cancelled);
-  jobs_.clear();
-  if (current_) failAll(*current_, cancelled);
+                 {{"cancelled_jobs", jobs}, {"frames_in_flight", frames}});
   return false;
 }
 
 bool RenderQueue::stop(Clock::duration wait) {
-  std::unique_lock lock(mutex_);
-  accepting_ = false;
-  stopping_ = true;
-  workCondition_.notify_all();
-  const bool done = idleCondition_.wait_for(lock, wait, [this] { return threadDone_; });
-  lock.unlock();
+  {
+    std::lock_guard lock(mutex_);
+    accepting_ = false;
+  }
+  for (const auto& worker : workers_) worker->requestStop();
+  const Clock::time_point deadline = Clock::now() + wait;
+  bool stopped = true;
+  for (const auto& worker : workers_) {
+    stopped = worker->join(std::max<Clock::duration>(deadline - Clock::now(), Clock::duration{})) &&
+              stopped;
+  }
   endVulkanProbe();
-  if (!thread_.joinable()) return true;
-  if (!done) {
-    thread_.detach();  // stuck in a driver call; the process is about to exit
-    return false;
-  }
-  thread_.join();
-  return true;
-}
-
-// --- The render thread --------------------------------------------------------------------------
-
-void RenderQueue::run() {
-  const bool up = bringUpRenderer();
-  releaseVulkanProbe();
-  if (up) {
-    while (std::shared_ptr<RenderJob> job = takeJob()) {
-      runJob(job);
-      finishJob();
-    }
-    settleFramesInFlight();
-  }
-  releaseRenderer();  // the context is destroyed on the thread that made it
-  std::lock_guard lock(mutex_);
-  threadDone_ = true;
-  idleCondition_.notify_all();
-}
-
-bool RenderQueue::bringUpRenderer() {
-  const auto start = Clock::now();
-  if (!encoders_) encoders_ = std::make_unique<lgh::TaskPool>(options_.output.encoderCount());
-  try {
-    const WatchdogScope watched(watchdog_.get(), start + kStartUpAllowance + options_.watchdog);
-    auto renderer = std::make_unique<lgh::Renderer>(options_.renderer);
-    const lgh::RenderResult selfTest = renderer->render(selfTestRequest());
-    if (selfTest.encoded.empty()) throw internalError("the self-test render produced no image");
-    std::lock_guard lock(mutex_);
-    renderer_ = std::move(renderer);
-  } catch (const std::exception& error) {
-    {
-      std::lock_guard lock(mutex_);
-      state_ = State::Failed;
-      failure_ = std::string("no working GL context: ") + error.what();
-      const ApiError noContext = unavailable(failure_);
-      for (const auto& job : jobs_) failAll(*job, noContext);
-      jobs_.clear();
-    }
-    logging::event(spdlog::level::critical, "renderer_failed", {{"error", error.what()}});
-    if (onFatal_) onFatal_(1, error.what());
-    return false;
-  }
-  publishRendererState();
-  std::lock_guard lock(mutex_);
-  device_ = renderer_->device();
-  state_ = State::Ready;
-  logging::event(spdlog::level::info, "ready",
-                 {{"device", device_->toJson()}, {"startup_ms", millisecondsSince(start)}});
-  return true;
-}
-
-// After a GL failure the context may be broken: replace it rather than serve from it. The frames
-// in flight on it fail, and the encoders finish reading pixels from its read-back memory first.
-void RenderQueue::recoverRenderer(const std::string& reason) {
-  logging::event(spdlog::level::err, "renderer_reset", {{"reason", reason}});
-  failFramesInFlight(
-      internalError("the GL context failed while this frame was in flight: " + reason));
-  encoders_->waitIdle();
-  releaseRenderer();
-  {
-    std::lock_guard lock(mutex_);
-    state_ = State::Starting;
-  }
-  bringUpRenderer();
-}
-
-// The next job; while none waits and frames are in flight, those are finished and handed to the
-// encoders instead of sleeping.
-std::shared_ptr<RenderJob> RenderQueue::takeJob() {
-  for (;;) {
-    {
-      std::unique_lock lock(mutex_);
-      if (submitted_.empty()) {
-        workCondition_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });
-      }
-      if (stopping_ || state_ == State::Failed) return nullptr;
-      if (!jobs_.empty()) {
-        current_ = std::move(jobs_.front());
-        jobs_.pop_front();
-        return current_;
-      }
-    }
-    completeFrame(true);
-    if (!renderer_) return nullptr;  // recovery failed: the daemon is going down
-  }
-}
-
-void RenderQueue::finishJob() {
-  std::lock_guard lock(mutex_);
-  current_.reset();
-  idleCondition_.notify_all();
-}
-
-const lgh::RenderRequest* RenderQueue::nextRequest(const RenderJob& job, std::size_t index) {
-  if (index + 1 < job.tickets.size()) return &job.tickets[index + 1]->request();
-  std::lock_guard lock(mutex_);
-  // Tickets never change once queued, and the job stays alive in the queue while it is read.
-  if (!jobs_.empty() && !jobs_.front()->tickets.empty()) {
-    return &jobs_.front()->tickets.front()->request();
-  }
-  return nullptr;
-}
-
-void RenderQueue::runJob(const std::shared_ptr<RenderJob>& job) {
-  if (Clock::now() > job->startDeadline) {
-    failAll(*job, timedOut("the render waited in the queue past its deadline"));
-    for (std::size_t i = 0; i < job->tickets.size(); ++i) metrics_.recordRender("skipped");
-    logging::event(spdlog::level::warn, "job_expired_in_queue", {{"request_id", job->requestId}});
-    return;
-  }
-  for (std::size_t i = 0; i < job->tickets.size(); ++i) {
-    const std::shared_ptr<RenderTicket>& ticket = job->tickets[i];
-    if (job->cancelled) ticket->fail(unavailable("the batch was cancelled"));
-    if (ticket->settled()) {  // its waiter gave up (deadline) or the job was cancelled
-      metrics_.recordRender("skipped");
-      continue;
-    }
-    submitTicket(job, ticket, nextRequest(*job, i));
-    if (!renderer_) {  // recovery failed: the daemon is going down
-      failAll(*job, unavailable("no working GL context"));
-      return;
-    }
-    while (completeFrame(false)) {
-    }
-  }
-}
-
-// --- Frames in flight ---------------------------------------------------------------------------
-
-namespace {
-
-std::size_t frameBytes(const lgh::RenderRequest& request) {
-  const lgh::FramePixels shape{request.output.width, request.output.height,
-                               lgh::pixelLayoutFor(request.output), nullptr};
-  return shape.size();
-}
-
-}  // namespace
-
-void RenderQueue::submitTicket(const std::shared_ptr<RenderJob>& job,
-                               const std::shared_ptr<RenderTicket>& ticket,
-                               const lgh::RenderRequest* next) {
-  const std::size_t bytes = frameBytes(ticket->request());
-  waitForFrameCapacity(bytes);
-  if (!renderer_) return;
-  ticket->markStarted();
-  const auto start = Clock::now();
-  try {
-    const WatchdogScope watched(watchdog_.get(), job->startDeadline + options_.watchdog);
-    if (options_.testRenderDelay.count() > 0) std::this_thread::sleep_for(options_.testRenderDelay);
-    // The next scene is parsed while this one uploads and renders.
-    if (next != nullptr) renderer_->prefetch(*next);
-    renderer_->submit(ticket->request());
-    submitted_.push_back({job, ticket, start, start, bytes});
-    std::lock_guard lock(mutex_);
-    ++framesOutstanding_;
-    bytesOutstanding_ += bytes;
-  } catch (const lgh::Error& error) {
-    ticket->fail(fromLghError(error));
-    metrics_.recordRender("error");
-    // A GL failure may have broken the context, and a lost one (GPU reset) certainly has.
-    if (error.code() == lgh::ErrorCode::Internal || !renderer_->healthy()) {
-      recoverRenderer(error.what());
-    }
-  } catch (const std::exception& error) {
-    ticket->fail(internalError(error.what()));
-    metrics_.recordRender("error");
-    recoverRenderer(error.what());
-  }
-}
-
-void RenderQueue::waitForFrameCapacity(std::size_t bytes) {
-  const std::size_t frameLimit = options_.output.frameLimit();
-  const std::size_t byteLimit = options_.output.readbackBytes;
-  const auto fits = [&] {
-    return framesOutstanding_ == 0 ||
-           (framesOutstanding_ < frameLimit && bytesOutstanding_ + bytes <= byteLimit);
-  };
-  for (;;) {
-    {
-      std::unique_lock lock(mutex_);
-      if (fits()) return;
-      if (submitted_.empty()) {  // only the encoders can make room
-        frameDoneCondition_.wait(lock, fits);
-        return;
-      }
-    }
-    completeFrame(true);
-    if (!renderer_) return;
-  }
-}
-
-bool RenderQueue::completeFrame(bool wait) {
-  if (submitted_.empty() || !renderer_) return false;
-  std::optional<lgh::RenderResult> result;
-  try {
-    const WatchdogScope watched(watchdog_.get(),
-                                submitted_.front().job->startDeadline + options_.watchdog);
-    result = renderer_->finish(wait);
-  } catch (const std::exception& error) {
-    recoverRenderer(error.what());
-    return false;
-  }
-  if (!result) return false;
-  FrameInFlight frame = std::move(submitted_.front());
-  submitted_.pop_front();
-  frame.finished = Clock::now();
-  publishRendererState();
-  encoders_->submit([this, frame = std::move(frame), result = std::move(*result)]() mutable {
-    encode(frame, result);
-  });
-  return true;
-}
-
-void RenderQueue::encode(FrameInFlight& frame, lgh::RenderResult& result) {
-  RenderTicket& ticket = *frame.ticket;
-  const auto encodeStart = Clock::now();
-  const double queueMs = millisecondsBetween(frame.job->enqueued, frame.started);
-  const double waitMs = millisecondsBetween(frame.finished, encodeStart);
-  auto& rows = result.timings.rows;
-  rows.insert(rows.begin(), lgh::TimingRow{"queue", lgh::TimingRow::Clock::Cpu, queueMs, 0});
-  result.timings.add("encode wait", lgh::TimingRow::Clock::Cpu, waitMs);
-  bool failed = false;
-  bool encoded = false;
-  // A ticket settled already (its waiter's deadline, a cancel, the shutdown) is not encoded.
-  if (!ticket.settled()) {
-    try {
-      result.encoded = result.encode(encoders_.get());
-      result.mimeType = lgh::mimeType(result.output.format);
-      encoded = true;
-    } catch (const std::exception& error) {
-      failed = true;
-      ticket.fail(internalError(std::string("encoding failed: ") + error.what()));
-    }
-  }
-  result.pixels.release();  // back to the renderer's read-back memory
-  const double encodeSeconds = secondsSince(encodeStart);
-  result.timings.add("encode", lgh::TimingRow::Clock::Cpu, encodeSeconds * 1000.0);
-  result.timings.add("total", lgh::TimingRow::Clock::Cpu, millisecondsSince(frame.started));
-  if (encoded) {
-    metrics_.recordEncode(lgh::enumName(result.output.format), waitMs / 1000.0, encodeSeconds);
-  }
-  metrics_.recordRenderTimes(result.timings, queueMs / 1000.0, result.sceneCacheHit);
-  if (const auto shadows = result.decisions.find("shadows"); shadows != result.decisions.end()) {
-    metrics_.recordShadows(shadows->second);
-  }
-  if (failed) {
-    metrics_.recordRender("error");
-  } else if (ticket.complete(std::move(result))) {
-    metrics_.recordRender("ok");
-  } else {
-    metrics_.recordRender("timeout");
-    logging::event(
-        spdlog::level::warn, "render_discarded",
-        {{"request_id", frame.job->requestId}, {"render_ms", millisecondsSince(frame.started)}});
-  }
-  frameDone(frame, secondsSince(frame.started));
-}
-
-void RenderQueue::frameDone(const FrameInFlight& frame, double seconds) {
-  {
-    std::lock_guard lock(mutex_);
-    --framesOutstanding_;
-    bytesOutstanding_ -= frame.bytes;
-    if (seconds > 0.0) averageRenderSeconds_ = 0.8 * averageRenderSeconds_ + 0.2 * seconds;
-  }
-  frameDoneCondition_.notify_all();
-  idleCondition_.notify_all();
-}
-
-void RenderQueue::failFramesInFlight(const ApiError& error) {
-  while (!submitted_.empty()) {
-    FrameInFlight frame = std::move(submitted_.front());
-    submitted_.pop_front();
-    frame.ticket->fail(error);
-    metrics_.recordRender("error");
-    frameDone(frame, 0.0);
-  }
-}
-
-// At the end: the frames in flight finish and are encoded (or dropped, when their tickets were
-// settled by the shutdown), before the renderer and its read-back memory go.
-void RenderQueue::settleFramesInFlight() {
-  while (completeFrame(true)) {
-  }
-  if (!submitted_.empty()) failFramesInFlight(unavailable("the daemon is shutting down"));
-  if (encoders_) encoders_->waitIdle();
-}
-
-// --- The watchdog -------------------------------------------------------------------------------
-
-// On the watchdog's thread, while the render thread is stuck: answer everyone, turn not ready and
-// have the process end (a context stuck in a driver call cannot be replaced in this process).
-void RenderQueue::declareHung() {
-  const auto seconds = std::chrono::duration<double>(options_.watchdog).count();
-  const std::string reason = fmt::format(
-      "the render thread has been stuck in one render (or renderer start-up) for {:g} s past "
-      "its deadline (--watchdog-seconds): the GPU or its driver hangs; lghd exits so that its "
-      "supervisor starts it again",
-      seconds);
-  std::string requestId;
-  {
-    std::lock_guard lock(mutex_);
-    state_ = State::Failed;
-    failure_ = reason;
-    const ApiError hung = unavailable(reason).withRetryAfter(5);
-    for (const auto& job : jobs_) failAll(*job, hung);
-    jobs_.clear();
-    if (current_) {
-      requestId = current_->requestId;
-      failAll(*current_, hung);
-    }
-  }
-  metrics_.recordRender("hung");
-  logging::event(spdlog::level::critical, "render_hung",
-                 {{"request_id", requestId}, {"watchdog_s", seconds}, {"reason", reason}});
-  if (onFatal_) onFatal_(kExitRenderHung, reason);
-}
-
-void RenderQueue::publishRendererState() {
-  const lgh::Renderer::CacheStats stats = renderer_->sceneCacheStats();
-  lgh::ShadowInfo shadows = renderer_->shadowInfo();
-  lgh::ResourceStats resources = renderer_->resourceStats();
-  std::lock_guard lock(mutex_);
-  cacheStats_ = stats;
-  shadowInfo_ = std::move(shadows);
-  resources_ = std::move(resources);
-}
-
-lgh::ResourceStats RenderQueue::resources() const {
-  std::lock_guard lock(mutex_);
-  return resources_;
-}
-
-// Under mutex_, so that gauges() may read the renderer's read-back memory from HTTP threads.
-void RenderQueue::releaseRenderer() {
-  std::lock_guard lock(mutex_);
-  renderer_.reset();
-}
-
-lgh::ShadowInfo RenderQueue::shadows() const {
-  std::lock_guard lock(mutex_);
-  return shadowInfo_;
+  return stopped;
 }
 
 }  // namespace lghd

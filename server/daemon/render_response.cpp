@@ -43,6 +43,8 @@ void setRenderHeaders(httplib::Response& response, const RenderAnswer& answer) {
   response.set_header("X-Lgh-Renderer", headerSafe(result.device.glRenderer));
   response.set_header("X-Lgh-Context", headerSafe(result.device.contextPath));
   response.set_header("X-Lgh-Cache", result.sceneCacheHit ? "hit" : "miss");
+  response.set_header("X-Lgh-Gpu", std::to_string(answer.gpu));
+  response.set_header("X-Lgh-Gpu-Device", std::to_string(result.device.eglDeviceIndex));
   response.set_header("X-Lgh-Queue-Ms", fmt::format("{:.3f}", answer.queueMs));
   response.set_header("X-Lgh-Render-Ms", fmt::format("{:.3f}", result.timings.get("total")));
   // Both can grow with the client's scene: capped (capped_header.hpp).
@@ -58,6 +60,7 @@ nlohmann::json renderResponseJson(const RenderAnswer& answer) {
           {"height", answer.height},
           {"timings", result.timings.toJson()},
           {"device", result.device.toJson()},
+          {"gpu", answer.gpu},
           {"paths", result.decisions},
           {"warnings", result.warnings},
           {"request_id", answer.requestId}};

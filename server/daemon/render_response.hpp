@@ -17,13 +17,15 @@ struct RenderAnswer {
   int height = 0;
   double queueMs = 0.0;
   std::string requestId;
+  int gpu = -1;  // the render worker it ran on (its place in --gpus)
 };
 
 // X-Lgh-Timings (compact JSON), Server-Timing, X-Lgh-Renderer, X-Lgh-Context, X-Lgh-Cache,
-// X-Lgh-Queue-Ms, X-Lgh-Render-Ms, X-Lgh-Paths, X-Lgh-Warnings.
+// X-Lgh-Queue-Ms, X-Lgh-Render-Ms, X-Lgh-Paths, X-Lgh-Warnings, X-Lgh-Gpu (the render worker) and
+// X-Lgh-Gpu-Device (its EGL device).
 void setRenderHeaders(httplib::Response& response, const RenderAnswer& answer);
 
-// {image, mime, width, height, timings, device, paths, warnings, request_id}
+// {image, mime, width, height, timings, device, gpu, paths, warnings, request_id}
 nlohmann::json renderResponseJson(const RenderAnswer& answer);
 
 }  // namespace lghd

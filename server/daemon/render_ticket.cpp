@@ -25,9 +25,15 @@ bool RenderTicket::settled() const {
   return settled_;
 }
 
-void RenderTicket::markStarted() {
+void RenderTicket::markStarted(int gpu) {
   std::lock_guard lock(mutex_);
   started_ = Clock::now();
+  gpu_ = gpu;
+}
+
+int RenderTicket::gpu() const {
+  std::lock_guard lock(mutex_);
+  return gpu_;
 }
 
 std::optional<Clock::time_point> RenderTicket::started() const {

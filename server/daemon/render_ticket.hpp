@@ -29,9 +29,12 @@ class RenderTicket {
   // with a 504. Returns the result (moved out: call once) or throws the ApiError.
   lgh::RenderResult wait(Clock::time_point deadline);
 
-  void markStarted();
+  // The render worker `gpu` (its place in --gpus) has started it.
+  void markStarted(int gpu);
   // When the render thread started it; empty while it waits in the queue.
   std::optional<Clock::time_point> started() const;
+  // The worker that rendered it (-1: none yet).
+  int gpu() const;
 
  private:
   bool settle(std::optional<lgh::RenderResult> result, std::optional<ApiError> error);
@@ -43,6 +46,7 @@ class RenderTicket {
   std::optional<lgh::RenderResult> result_;
   std::optional<ApiError> error_;
   std::optional<Clock::time_point> started_;
+  int gpu_ = -1;
 };
 
 }  // namespace lghd

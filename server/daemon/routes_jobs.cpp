@@ -36,7 +36,7 @@ void answerRenderResult(const JobResult& result, const httplib::Request& http,
                         httplib::Response& response) {
   const std::string mime = chooseMediaType(http, {result.render->mimeType, "application/json"});
   const RenderAnswer answer{*result.render, result.width, result.height, result.queueMs,
-                            requestIdOf(response)};
+                            requestIdOf(response), result.gpu};
   setRenderHeaders(response, answer);
   if (mime == "application/json") {
     sendJson(response, 200, renderResponseJson(answer));

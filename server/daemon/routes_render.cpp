@@ -48,7 +48,7 @@ void render(DaemonContext& context, const httplib::Request& http, httplib::Respo
 
   const double queueMs =
       millisecondsBetween(job->enqueued, ticket.started().value_or(job->enqueued));
-  const RenderAnswer answer{result, width, height, queueMs, requestId};
+  const RenderAnswer answer{result, width, height, queueMs, requestId, ticket.gpu()};
   setRenderHeaders(response, answer);
   if (mime == "application/json") {
     sendJson(response, 200, renderResponseJson(answer));

@@ -1,5 +1,6 @@
-// GET /healthz (liveness: the process serves HTTP), /readyz (the context is up and the self-test
-// render passed; 503 while starting or shutting down), /v1/info and /metrics.
+// GET /healthz (liveness: the process serves HTTP), /readyz (at least one render worker's context
+// is up and its self-test render passed; 503 while starting or shutting down; the body lists each
+// worker), /v1/info (with a gpus array: each worker) and /metrics.
 #include <httplib.h>
 
 #include "http_util.hpp"
@@ -46,6 +47,41 @@ json cacheJson(const RuntimeGauges& gauges) {
           {"budget_bytes", gauges.sceneCacheBudgetBytes}};
 }
 
+// Each render worker: its place in --gpus, its EGL device, its state and load, its scene cache.
+json gpusJson(const DaemonContext& context) {
+  json gpus = json::array();
+  for (const RenderWorker::Status& worker : context.queue.workers()) {
+    json entry = {{"gpu", worker.index},
+                  {"device_index", worker.deviceIndex},
+                  {"state", workerStateName(worker.state)},
+                  {"queue_depth", worker.queuedRenders},
+                  {"rendering", worker.rendering},
+                  {"frames_in_flight", worker.framesInFlight},
+                  {"scene_cache",
+                   {{"hits", worker.cache.hits},
+                    {"misses", worker.cache.misses},
+                    {"entries", worker.cache.entries},
+                    {"bytes", worker.cache.bytes},
+                    {"budget_bytes", context.config.sceneCacheBytes}}}};
+    entry["device_name"] = worker.device ? worker.device->glRenderer : "";
+    entry["device"] = worker.device ? worker.device->toJson() : json();
+    if (!worker.failure.empty()) entry["reason"] = worker.failure;
+    gpus.push_back(std::move(entry));
+  }
+  return gpus;
+}
+
+// /readyz: each worker's state, so that a probe's log shows which GPU is out.
+json gpuStatesJson(const DaemonContext& context) {
+  json gpus = json::array();
+  for (const RenderWorker::Status& worker : context.queue.workers()) {
+    json entry = {{"gpu", worker.index}, {"state", workerStateName(worker.state)}};
+    if (!worker.failure.empty()) entry["reason"] = worker.failure;
+    gpus.push_back(std::move(entry));
+  }
+  return gpus;
+}
+
 // What the Vulkan loader and drivers offer (null until the probe has answered).
 json vulkanJson(const std::optional<lgh::VulkanInfo>& vulkan) {
   return vulkan ? vulkan->toJson() : json{{"available", nullptr}};
@@ -69,6 +105,7 @@ json infoJson(const DaemonContext& context) {
             {"capacity", gauges.queueCapacity},
             {"rendering", gauges.rendering}}},
           {"scene_cache", cacheJson(gauges)},
+          {"gpus", gpusJson(context)},
           {"jobs", jobLimitsJson(context.config.jobs)},
           {"auth", !context.config.authToken.empty()},
           {"cors_origins", context.config.corsOrigins}};
@@ -83,7 +120,7 @@ void addScrapeRoutes(httplib::Server& server, DaemonContext& context) {
   server.Get("/readyz", [&context](const httplib::Request&, httplib::Response& response) {
     const std::string reason = context.queue.notReadyReason();
     if (reason.empty()) {
-      sendJson(response, 200, {{"status", "ready"}});
+      sendJson(response, 200, {{"status", "ready"}, {"gpus", gpuStatesJson(context)}});
     } else {
       sendError(response, unavailable(reason));
     }

@@ -1,5 +1,6 @@
 // POST /v1/thumbnails: a batch of assets rendered with auto-framed cameras. The whole batch is
-// one job in the render queue (one slot); its renders run back to back. Answers a ZIP (PNGs
+// one job in the render queue (one slot); its renders are spread over the render workers (GPUs)
+// and answered in the batch's order, each naming the GPU it ran on. Answers a ZIP (PNGs
 // stored, failures in errors.json) or streams NDJSON, one line per thumbnail as it finishes and a
 // summary line at the end.
 #include <map>
@@ -47,6 +48,7 @@ class BatchRun {
   struct Outcome {
     std::optional<lgh::RenderResult> result;
     std::optional<ApiError> error;
+    int gpu = -1;  // the render worker that rendered it
   };
   Outcome wait(std::size_t i) {
     const ThumbnailItem& thumbnail = batch_.items[i];
@@ -54,9 +56,10 @@ class BatchRun {
     RenderTicket& ticket = *job_->tickets[ticketOf_.at(i)];
     const Clock::time_point deadline = std::max(job_->startDeadline, Clock::now() + perRender_);
     try {
-      return record({ticket.wait(deadline), std::nullopt});
+      lgh::RenderResult result = ticket.wait(deadline);
+      return record({std::move(result), std::nullopt, ticket.gpu()});
     } catch (const ApiError& error) {
-      return record({std::nullopt, inBatchTerms(error, thumbnail)});
+      return record({std::nullopt, inBatchTerms(error, thumbnail), ticket.gpu()});
     }
   }
 
@@ -114,6 +117,7 @@ json outcomeLine(const BatchRun& run, std::size_t i, const BatchRun::Outcome& ou
   }
   const lgh::RenderResult& result = *outcome.result;
   line["status"] = "ok";
+  line["gpu"] = outcome.gpu;
   line["mime"] = result.mimeType;
   line["width"] = result.output.width;
   line["height"] = result.output.height;

@@ -336,3 +336,45 @@ TEST_F(DaemonConfigTest, VersionPrintsTheBuild) {
 
 }  // namespace
 }  // namespace lghd
+
+namespace lghd {
+namespace {
+
+TEST_F(DaemonConfigTest, GpusListsOneWorkerPerDeviceAndDefaultsToGpu) {
+  const Parsed defaults = parse({"--gpu", "3"});
+  ASSERT_TRUE(defaults.result.config);
+  EXPECT_EQ(defaults.result.config->gpuList(), std::vector<int>{3});
+  const Parsed listed = parse({"--gpus", "0, 2,2"});
+  ASSERT_TRUE(listed.result.config) << listed.err;
+  EXPECT_EQ(listed.result.config->gpuList(), (std::vector<int>{0, 2, 2}));
+  setEnv("LGHD_GPUS", "1,0");
+  const Parsed fromEnv = parse({});
+  ASSERT_TRUE(fromEnv.result.config) << fromEnv.err;
+  EXPECT_EQ(fromEnv.result.config->gpuList(), (std::vector<int>{1, 0}));
+  // All of EGL's devices: this machine has at least its software one.
+  const Parsed all = parse({"--gpus", "all"});
+  ASSERT_TRUE(all.result.config);
+  EXPECT_TRUE(all.result.config->allGpus);
+  EXPECT_FALSE(all.result.config->gpuList().empty());
+}
+
+TEST_F(DaemonConfigTest, BadGpusAndContextLossHookExitWithStatus2) {
+  for (const auto& [args, mention] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"--gpus", "0,x"}, "'x'"},
+           {{"--gpus", "0,,1"}, "--gpus"},
+           {{"--gpus", " "}, "--gpus"},
+           {{"--gpus", "-1"}, "'-1'"},
+           {{"--test-context-loss", "1"}, "--test-context-loss"}}) {
+    const Parsed parsed = parse(args);
+    EXPECT_FALSE(parsed.result.config) << args[1];
+    EXPECT_EQ(parsed.result.exitCode, 2) << args[1];
+    EXPECT_NE(parsed.err.find(mention), std::string::npos) << args[1] << ": " << parsed.err;
+  }
+  const Parsed hook = parse({"--test-context-loss", "1:4"});
+  ASSERT_TRUE(hook.result.config);
+  EXPECT_EQ(hook.result.config->testContextLossGpu, 1);
+  EXPECT_EQ(hook.result.config->testContextLossAfter, 4);
+}
+
+}  // namespace
+}  // namespace lghd

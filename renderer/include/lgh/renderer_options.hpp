@@ -54,6 +54,9 @@ struct RendererOptions {
   // (lgh/scene_worker.hpp) rather than in this one: a parser crash or runaway then fails one load,
   // not the process. Empty executable: in this process.
   SceneWorkerOptions sceneWorker;
+  // FOR TESTS ONLY: report a lost context after this many frames, as a GPU reset would (-1: as
+  // LGH_DEBUG_CONTEXT_LOSS_AFTER says, else never). One renderer of several can be made to fail.
+  int debugContextLossAfter = -1;
 };
 
 }  // namespace lgh

@@ -13,6 +13,7 @@
 
 #include "context/container_hints.hpp"
 #include "context/gl_context.hpp"
+#include "lgh/egl_devices.hpp"
 #include "lgh/error.hpp"
 
 namespace lgh {
@@ -264,6 +265,11 @@ std::string describeDevice(EGLDeviceEXT device) {
 }
 
 }  // namespace
+
+int eglDeviceCount() {
+  loadEglClient();
+  return static_cast<int>(queryEglDevices().size());
+}
 
 std::unique_ptr<GlContext> createEglDeviceContext(const RendererOptions& options) {
   loadEglClient();

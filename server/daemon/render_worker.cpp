@@ -1,0 +1,538 @@
+#include "render_worker.hpp"
+
+#include <numeric>
+
+#include <fmt/format.h>
+
+#include "logging.hpp"
+
+namespace lghd {
+namespace {
+
+// What a renderer start-up (GL context, Vulkan device, self-test render) may take before the
+// watchdog's time starts to count, as a render's deadline does for a render.
+constexpr auto kStartUpAllowance = std::chrono::seconds(30);
+
+lgh::RenderRequest selfTestRequest() {
+  lgh::RenderRequest request;  // the demo scene
+  request.output.width = 64;
+  request.output.height = 64;
+  return request;
+}
+
+std::size_t frameBytes(const lgh::RenderRequest& request) {
+  const lgh::FramePixels shape{request.output.width, request.output.height,
+                               lgh::pixelLayoutFor(request.output), nullptr};
+  return shape.size();
+}
+
+double pieceSeconds(const JobPiece& piece) {
+  return std::accumulate(piece.estimates.begin(), piece.estimates.end(), 0.0);
+}
+
+void failJob(RenderJob& job, const ApiError& error) {
+  job.cancelled = true;
+  for (const auto& ticket : job.tickets) ticket->fail(error);
+}
+
+}  // namespace
+
+const char* workerStateName(RenderWorker::State state) {
+  switch (state) {
+    case RenderWorker::State::Starting:
+      return "starting";
+    case RenderWorker::State::Ready:
+      return "ready";
+    case RenderWorker::State::Rebuilding:
+      return "rebuilding";
+    case RenderWorker::State::Failed:
+      return "failed";
+  }
+  return "unknown";
+}
+
+RenderWorker::RenderWorker(Options options, Metrics& metrics, lgh::TaskPool& encoders, Hooks hooks)
+    : options_(std::move(options)),
+      metrics_(metrics),
+      encoders_(encoders),
+      hooks_(std::move(hooks)) {}
+
+RenderWorker::~RenderWorker() {
+  if (thread_.joinable()) {
+    requestStop();
+    join(std::chrono::seconds(30));
+  }
+}
+
+void RenderWorker::start() {
+  if (options_.watchdog.count() > 0) {
+    watchdog_ = std::make_unique<RenderWatchdog>([this] {
+      if (hooks_.hung) hooks_.hung(*this);
+    });
+  }
+  thread_ = std::thread([this] { run(); });
+}
+
+// --- Other threads ------------------------------------------------------------------------------
+
+void RenderWorker::enqueue(JobPiece piece) {
+  {
+    std::lock_guard lock(mutex_);
+    pendingSeconds_ += pieceSeconds(piece);
+    pieces_.push_back(std::move(piece));
+  }
+  workCondition_.notify_one();
+}
+
+WorkerEstimate RenderWorker::estimate(const std::string& scene) const {
+  std::lock_guard lock(mutex_);
+  WorkerEstimate estimate;
+  estimate.schedulable = state_ == State::Ready && !stopping_;
+  estimate.pendingSeconds = pendingSeconds_;
+  estimate.hitSeconds = hitSeconds_;
+  estimate.missSeconds = missSeconds_;
+  estimate.resident = resident_.contains(scene);
+  return estimate;
+}
+
+RenderWorker::Status RenderWorker::status() const {
+  std::lock_guard lock(mutex_);
+  Status status;
+  status.index = options_.index;
+  status.deviceIndex = options_.renderer.gpuIndex;
+  status.state = state_;
+  status.failure = failure_;
+  status.device = device_;
+  for (const JobPiece& piece : pieces_) status.queuedRenders += piece.tickets.size();
+  status.rendering = current_.has_value();
+  status.pendingSeconds = pendingSeconds_;
+  status.cache = cacheStats_;
+  status.framesInFlight = framesOutstanding_;
+  // Live: frames give their read-back memory back on encoder threads, after the last publish.
+  status.readbackBytes = renderer_ ? renderer_->readbackStats().heldBytes : 0;
+  status.shadows = shadowInfo_;
+  status.resources = resources_;
+  status.averageRenderSeconds = averageRenderSeconds_;
+  return status;
+}
+
+bool RenderWorker::waitIdle(Clock::time_point deadline) {
+  std::unique_lock lock(mutex_);
+  if (state_ == State::Failed) return pieces_.empty() && !current_;  // nothing left can finish
+  return idleCondition_.wait_until(
+      lock, deadline, [this] { return pieces_.empty() && !current_ && framesOutstanding_ == 0; });
+}
+
+std::size_t RenderWorker::failAll(const ApiError& error) {
+  std::deque<JobPiece> queued;
+  std::shared_ptr<RenderJob> current;
+  {
+    std::lock_guard lock(mutex_);
+    queued.swap(pieces_);
+    for (const JobPiece& piece : queued) pendingSeconds_ -= pieceSeconds(piece);
+    if (current_) current = current_->job;
+  }
+  for (JobPiece& piece : queued) {
+    failJob(*piece.job, error);
+    if (hooks_.pieceLeft) hooks_.pieceLeft(*piece.job);
+  }
+  if (current) failJob(*current, error);
+  idleCondition_.notify_all();
+  return queued.size() + (current ? 1 : 0);
+}
+
+void RenderWorker::markHung(const std::string& reason) {
+  {
+    std::lock_guard lock(mutex_);
+    hung_ = true;
+    state_ = State::Failed;
+    failure_ = reason;
+  }
+  metrics_.recordRender("hung", options_.index);
+}
+
+void RenderWorker::requestStop() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  workCondition_.notify_all();
+}
+
+bool RenderWorker::join(Clock::duration wait) {
+  if (!thread_.joinable()) return true;
+  bool done = false;
+  {
+    std::unique_lock lock(mutex_);
+    done = idleCondition_.wait_for(lock, wait, [this] { return threadDone_; });
+  }
+  if (!done) {
+    thread_.detach();  // stuck in a driver call; the process is about to exit
+    return false;
+  }
+  thread_.join();
+  return true;
+}
+
+// --- The render thread --------------------------------------------------------------------------
+
+void RenderWorker::run() {
+  if (bringUpRenderer()) {
+    while (std::optional<JobPiece> piece = takePiece()) {
+      runPiece(*piece);
+      finishPiece();
+    }
+    settleFramesInFlight();
+  }
+  releaseRenderer();  // the context is destroyed on the thread that made it
+  std::lock_guard lock(mutex_);
+  threadDone_ = true;
+  idleCondition_.notify_all();
+}
+
+void RenderWorker::setState(State state, const std::string& failure) {
+  {
+    std::lock_guard lock(mutex_);
+    if (hung_) return;
+    state_ = state;
+    failure_ = failure;
+  }
+  if (hooks_.stateChanged) hooks_.stateChanged(*this);
+}
+
+bool RenderWorker::bringUpRenderer() {
+  const auto start = Clock::now();
+  try {
+    const WatchdogScope watched(watchdog_.get(), start + kStartUpAllowance + options_.watchdog);
+    auto renderer = std::make_unique<lgh::Renderer>(options_.renderer);
+    const lgh::RenderResult selfTest = renderer->render(selfTestRequest());
+    if (selfTest.encoded.empty()) throw internalError("the self-test render produced no image");
+    std::lock_guard lock(mutex_);
+    renderer_ = std::move(renderer);
+  } catch (const std::exception& error) {
+    const std::string failure = std::string("no working GL context: ") + error.what();
+    logging::event(spdlog::level::critical, "renderer_failed",
+                   {{"gpu", options_.index}, {"error", error.what()}});
+    setState(State::Failed, failure);
+    failAll(unavailable(failure));
+    return false;
+  }
+  // A test hook's simulated loss is for the first renderer only: the rebuilt one stays healthy.
+  options_.renderer.debugContextLossAfter = -1;
+  publishRendererState();
+  lgh::DeviceInfo device = renderer_->device();
+  {
+    std::lock_guard lock(mutex_);
+    device_ = device;
+    resident_.clear();
+    resident_.touch(sceneKey(selfTestRequest().scene));  // the self-test left it in the cache
+  }
+  logging::event(spdlog::level::info, "ready",
+                 {{"gpu", options_.index},
+                  {"device", device.toJson()},
+                  {"startup_ms", millisecondsSince(start)}});
+  setState(State::Ready);
+  return true;
+}
+
+// After a GL failure the context may be broken: replace it rather than serve from it. The worker
+// leaves scheduling first and gives its queued pieces back; the frames in flight on it fail, and
+// the encoders finish reading pixels from its read-back memory before it goes.
+void RenderWorker::recoverRenderer(const std::string& reason) {
+  logging::event(spdlog::level::err, "renderer_reset",
+                 {{"gpu", options_.index}, {"reason", reason}});
+  setState(State::Rebuilding, "rebuilding its GL context after: " + reason);
+  std::deque<JobPiece> queued;
+  {
+    std::lock_guard lock(mutex_);
+    queued.swap(pieces_);
+    for (const JobPiece& piece : queued) pendingSeconds_ -= pieceSeconds(piece);
+  }
+  if (!queued.empty() && hooks_.piecesReturned) {
+    hooks_.piecesReturned(
+        *this, {std::make_move_iterator(queued.begin()), std::make_move_iterator(queued.end())});
+  }
+  failFramesInFlight(
+      internalError("the GL context failed while this frame was in flight: " + reason));
+  encoders_.waitIdle();
+  releaseRenderer();
+  bringUpRenderer();
+}
+
+// The next piece; while none waits and frames are in flight, those are finished and handed to the
+// encoders instead of sleeping.
+std::optional<JobPiece> RenderWorker::takePiece() {
+  for (;;) {
+    std::shared_ptr<RenderJob> taken;
+    {
+      std::unique_lock lock(mutex_);
+      if (submitted_.empty()) {
+        workCondition_.wait(lock, [this] { return stopping_ || !pieces_.empty(); });
+      }
+      if (stopping_ || state_ == State::Failed) return std::nullopt;
+      if (!pieces_.empty()) {
+        current_ = std::move(pieces_.front());
+        pieces_.pop_front();
+        taken = current_->job;
+      }
+    }
+    if (taken) {
+      if (hooks_.pieceLeft) hooks_.pieceLeft(*taken);
+      std::lock_guard lock(mutex_);
+      return current_;
+    }
+    completeFrame(true);
+    if (!renderer_) return std::nullopt;  // recovery failed
+  }
+}
+
+void RenderWorker::finishPiece() {
+  std::lock_guard lock(mutex_);
+  current_.reset();
+  idleCondition_.notify_all();
+}
+
+void RenderWorker::forget(double estimateSeconds) {
+  std::lock_guard lock(mutex_);
+  pendingSeconds_ -= estimateSeconds;
+}
+
+const lgh::RenderRequest* RenderWorker::nextRequest(const JobPiece& piece, std::size_t position) {
+  if (position + 1 < piece.tickets.size()) {
+    return &piece.job->tickets[piece.tickets[position + 1]]->request();
+  }
+  std::lock_guard lock(mutex_);
+  // Tickets never change once queued, and the job stays alive in the queue while it is read.
+  if (!pieces_.empty()) {
+    const JobPiece& next = pieces_.front();
+    return &next.job->tickets[next.tickets.front()]->request();
+  }
+  return nullptr;
+}
+
+void RenderWorker::runPiece(const JobPiece& piece) {
+  RenderJob& job = *piece.job;
+  if (Clock::now() > job.startDeadline) {
+    failJob(job, timedOut("the render waited in the queue past its deadline"));
+    for (double estimate : piece.estimates) {
+      forget(estimate);
+      metrics_.recordRender("skipped", options_.index);
+    }
+    logging::event(spdlog::level::warn, "job_expired_in_queue",
+                   {{"request_id", job.requestId}, {"gpu", options_.index}});
+    return;
+  }
+  for (std::size_t position = 0; position < piece.tickets.size(); ++position) {
+    const std::shared_ptr<RenderTicket>& ticket = job.tickets[piece.tickets[position]];
+    if (job.cancelled) ticket->fail(unavailable("the batch was cancelled"));
+    if (ticket->settled()) {  // its waiter gave up (deadline) or the job was cancelled
+      forget(piece.estimates[position]);
+      metrics_.recordRender("skipped", options_.index);
+      continue;
+    }
+    submitTicket(piece, position, nextRequest(piece, position));
+    if (!renderer_) {  // recovery failed: this worker is out
+      failJob(job, unavailable("no working GL context on GPU " + std::to_string(options_.index)));
+      for (std::size_t rest = position + 1; rest < piece.tickets.size(); ++rest) {
+        forget(piece.estimates[rest]);
+      }
+      return;
+    }
+    while (completeFrame(false)) {
+    }
+  }
+}
+
+// --- Frames in flight ---------------------------------------------------------------------------
+
+void RenderWorker::submitTicket(const JobPiece& piece, std::size_t position,
+                                const lgh::RenderRequest* next) {
+  const std::shared_ptr<RenderTicket>& ticket = piece.job->tickets[piece.tickets[position]];
+  const double estimate = piece.estimates[position];
+  const std::size_t bytes = frameBytes(ticket->request());
+  waitForFrameCapacity(bytes);
+  if (!renderer_) {
+    forget(estimate);
+    return;
+  }
+  ticket->markStarted(options_.index);
+  {
+    std::lock_guard lock(mutex_);
+    resident_.touch(piece.scenes[position]);
+  }
+  const auto start = Clock::now();
+  try {
+    const WatchdogScope watched(watchdog_.get(), piece.job->startDeadline + options_.watchdog);
+    if (options_.testRenderDelay.count() > 0) std::this_thread::sleep_for(options_.testRenderDelay);
+    // The next scene is parsed while this one uploads and renders.
+    if (next != nullptr) renderer_->prefetch(*next);
+    renderer_->submit(ticket->request());
+    submitted_.push_back({piece.job, ticket, start, start, bytes, estimate});
+    std::lock_guard lock(mutex_);
+    ++framesOutstanding_;
+    bytesOutstanding_ += bytes;
+    return;
+  } catch (const lgh::Error& error) {
+    ticket->fail(fromLghError(error));
+    forget(estimate);
+    metrics_.recordRender("error", options_.index);
+    // A GL failure may have broken the context, and a lost one (GPU reset) certainly has.
+    if (error.code() == lgh::ErrorCode::Internal || !renderer_->healthy()) {
+      recoverRenderer(error.what());
+    }
+  } catch (const std::exception& error) {
+    ticket->fail(internalError(error.what()));
+    forget(estimate);
+    metrics_.recordRender("error", options_.index);
+    recoverRenderer(error.what());
+  }
+}
+
+void RenderWorker::waitForFrameCapacity(std::size_t bytes) {
+  const std::size_t frameLimit = options_.output.frameLimit();
+  const std::size_t byteLimit = options_.output.readbackBytes;
+  const auto fits = [&] {
+    return framesOutstanding_ == 0 ||
+           (framesOutstanding_ < frameLimit && bytesOutstanding_ + bytes <= byteLimit);
+  };
+  for (;;) {
+    {
+      std::unique_lock lock(mutex_);
+      if (fits()) return;
+      if (submitted_.empty()) {  // only the encoders can make room
+        frameDoneCondition_.wait(lock, fits);
+        return;
+      }
+    }
+    completeFrame(true);
+    if (!renderer_) return;
+  }
+}
+
+bool RenderWorker::completeFrame(bool wait) {
+  if (submitted_.empty() || !renderer_) return false;
+  std::optional<lgh::RenderResult> result;
+  try {
+    const WatchdogScope watched(watchdog_.get(),
+                                submitted_.front().job->startDeadline + options_.watchdog);
+    result = renderer_->finish(wait);
+  } catch (const std::exception& error) {
+    recoverRenderer(error.what());
+    return false;
+  }
+  if (!result) return false;
+  FrameInFlight frame = std::move(submitted_.front());
+  submitted_.pop_front();
+  frame.finished = Clock::now();
+  publishRendererState();
+  encoders_.submit([this, frame = std::move(frame), result = std::move(*result)]() mutable {
+    encode(frame, result);
+  });
+  return true;
+}
+
+void RenderWorker::encode(FrameInFlight& frame, lgh::RenderResult& result) {
+  RenderTicket& ticket = *frame.ticket;
+  const auto encodeStart = Clock::now();
+  const double queueMs = millisecondsBetween(frame.job->enqueued, frame.started);
+  const double waitMs = millisecondsBetween(frame.finished, encodeStart);
+  auto& rows = result.timings.rows;
+  rows.insert(rows.begin(), lgh::TimingRow{"queue", lgh::TimingRow::Clock::Cpu, queueMs, 0});
+  result.timings.add("encode wait", lgh::TimingRow::Clock::Cpu, waitMs);
+  bool failed = false;
+  bool encoded = false;
+  // A ticket settled already (its waiter's deadline, a cancel, the shutdown) is not encoded.
+  if (!ticket.settled()) {
+    try {
+      result.encoded = result.encode(&encoders_);
+      result.mimeType = lgh::mimeType(result.output.format);
+      encoded = true;
+    } catch (const std::exception& error) {
+      failed = true;
+      ticket.fail(internalError(std::string("encoding failed: ") + error.what()));
+    }
+  }
+  result.pixels.release();  // back to the renderer's read-back memory
+  const double encodeSeconds = secondsSince(encodeStart);
+  result.timings.add("encode", lgh::TimingRow::Clock::Cpu, encodeSeconds * 1000.0);
+  result.timings.add("total", lgh::TimingRow::Clock::Cpu, millisecondsSince(frame.started));
+  if (encoded) {
+    metrics_.recordEncode(lgh::enumName(result.output.format), waitMs / 1000.0, encodeSeconds);
+  }
+  metrics_.recordRenderTimes(result.timings, queueMs / 1000.0, result.sceneCacheHit,
+                             options_.index);
+  if (const auto shadows = result.decisions.find("shadows"); shadows != result.decisions.end()) {
+    metrics_.recordShadows(shadows->second);
+  }
+  const bool cacheHit = result.sceneCacheHit;
+  if (failed) {
+    metrics_.recordRender("error", options_.index);
+  } else if (ticket.complete(std::move(result))) {
+    metrics_.recordRender("ok", options_.index);
+  } else {
+    metrics_.recordRender("timeout", options_.index);
+    logging::event(spdlog::level::warn, "render_discarded",
+                   {{"request_id", frame.job->requestId},
+                    {"gpu", options_.index},
+                    {"render_ms", millisecondsSince(frame.started)}});
+  }
+  frameDone(frame, secondsSince(frame.started), cacheHit);
+}
+
+// Learns the worker's render times: the whole time (for Retry-After) and the time to its
+// read-back by scene-cache result (for the scheduler).
+void RenderWorker::frameDone(const FrameInFlight& frame, double seconds,
+                             std::optional<bool> cacheHit) {
+  {
+    std::lock_guard lock(mutex_);
+    --framesOutstanding_;
+    bytesOutstanding_ -= frame.bytes;
+    pendingSeconds_ -= frame.estimate;
+    if (seconds > 0.0) averageRenderSeconds_ = 0.8 * averageRenderSeconds_ + 0.2 * seconds;
+    if (cacheHit) {
+      const double rendered = secondsBetween(frame.started, frame.finished);
+      double& average = *cacheHit ? hitSeconds_ : missSeconds_;
+      average = 0.8 * average + 0.2 * rendered;
+    }
+  }
+  frameDoneCondition_.notify_all();
+  idleCondition_.notify_all();
+}
+
+void RenderWorker::failFramesInFlight(const ApiError& error) {
+  while (!submitted_.empty()) {
+    FrameInFlight frame = std::move(submitted_.front());
+    submitted_.pop_front();
+    frame.ticket->fail(error);
+    metrics_.recordRender("error", options_.index);
+    frameDone(frame, 0.0, std::nullopt);
+  }
+}
+
+// At the end: the frames in flight finish and are encoded (or dropped, when their tickets were
+// settled by the shutdown), before the renderer and its read-back memory go.
+void RenderWorker::settleFramesInFlight() {
+  while (completeFrame(true)) {
+  }
+  if (!submitted_.empty()) failFramesInFlight(unavailable("the daemon is shutting down"));
+  encoders_.waitIdle();
+}
+
+void RenderWorker::publishRendererState() {
+  const lgh::Renderer::CacheStats stats = renderer_->sceneCacheStats();
+  lgh::ShadowInfo shadows = renderer_->shadowInfo();
+  lgh::ResourceStats resources = renderer_->resourceStats();
+  std::lock_guard lock(mutex_);
+  cacheStats_ = stats;
+  resident_.limit(stats.entries);
+  shadowInfo_ = std::move(shadows);
+  resources_ = std::move(resources);
+}
+
+// Under mutex_, so that status() may read the renderer's read-back memory from HTTP threads.
+void RenderWorker::releaseRenderer() {
+  std::lock_guard lock(mutex_);
+  renderer_.reset();
+}
+
+}  // namespace lghd
