@@ -162,7 +162,7 @@ std::shared_ptr<RenderJob> RenderQueue::submit(std::vector<lgh::RenderRequest> r
 // Each ticket in order goes to the worker that finishes it soonest, counting what this job has
 // given each worker already (its work, and its scenes as resident there).
 std::vector<JobPiece> RenderQueue::assign(const std::shared_ptr<RenderJob>& job,
-                                          std::vector<std::size_t> tickets) const {
+                                          const std::vector<std::size_t>& tickets) const {
   const std::size_t count = workers_.size();
   std::vector<JobPiece> pieces(count);
   std::vector<double> added(count, 0.0);

@@ -108,7 +108,7 @@ class RenderQueue {
   };
   // Splits the job's tickets over the schedulable workers (none: empty).
   std::vector<JobPiece> assign(const std::shared_ptr<RenderJob>& job,
-                               std::vector<std::size_t> tickets) const;
+                               const std::vector<std::size_t>& tickets) const;
   void dispatch(std::vector<JobPiece> pieces);
   void workerStateChanged(RenderWorker& worker);
   void piecesReturned(RenderWorker& from, std::vector<JobPiece> pieces);

@@ -216,7 +216,9 @@ TEST(GpusDeadlines, QueueAndRenderDeadlinesAndACancelledBatchStillWork) {
   const double skippedBefore =
       metricValue(http->Get("/metrics")->body, "lghd_renders_total{outcome=\"skipped\"}");
   json assets = json::array();
-  for (int i = 0; i < 8; ++i) assets.push_back("BoxTextured-glTF-Binary/BoxTextured.glb");
+  // Enough renders that both workers still have unstarted ones when the daemon finds out (its
+  // write of a later line fails only once the client's side has closed).
+  for (int i = 0; i < 20; ++i) assets.push_back("BoxTextured-glTF-Binary/BoxTextured.glb");
   const json request = {{"assets", assets},
                         {"views", {{{"name", "a"}, {"direction", {0, 0, 1}}}}},
                         {"width", 32},
