@@ -141,7 +141,7 @@ std::shared_ptr<RenderJob> RenderQueue::submit(std::vector<lgh::RenderRequest> r
                     retryAfterSeconds());
   }
   if (tickets.empty()) return job;
-  std::vector<JobPiece> pieces = assign(job, std::move(tickets));
+  std::vector<JobPiece> pieces = assign(job, tickets);
   if (pieces.empty()) {
     const std::vector<RenderWorker::Status> states = workers();
     if (anyIn(states, RenderWorker::State::Starting)) {
