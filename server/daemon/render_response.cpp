@@ -44,7 +44,10 @@ void setRenderHeaders(httplib::Response& response, const RenderAnswer& answer) {
   response.set_header("X-Lgh-Context", headerSafe(result.device.contextPath));
   response.set_header("X-Lgh-Cache", result.sceneCacheHit ? "hit" : "miss");
   response.set_header("X-Lgh-Gpu", std::to_string(answer.gpu));
-  response.set_header("X-Lgh-Gpu-Device", std::to_string(result.device.eglDeviceIndex));
+  // Only the EGL device path has a device index (surfaceless and OSMesa do not).
+  if (result.device.eglDeviceIndex >= 0) {
+    response.set_header("X-Lgh-Gpu-Device", std::to_string(result.device.eglDeviceIndex));
+  }
   response.set_header("X-Lgh-Queue-Ms", fmt::format("{:.3f}", answer.queueMs));
   response.set_header("X-Lgh-Render-Ms", fmt::format("{:.3f}", result.timings.get("total")));
   // Both can grow with the client's scene: capped (capped_header.hpp).
