@@ -15,11 +15,24 @@
 //    the lecture). Cook-Torrance's roughness term is the lecture's R divided by pi and its
 //    i_spec = F R G / ((N.V)(N.L)) takes the microfacet 1/4: the normalised form in which it
 //    conserves energy (the white-furnace test in tests/integration/test_brdf_models.cpp).
+// A pass may define LGH_BRDF_MODELS (MATERIAL_MODEL_BIT_* of the models present) and
+// LGH_BRDF_LAYERS (MATERIAL_LAYER_BIT_* of the metallic-roughness layers present) to compile only
+// the code of what its frame's G-buffer holds (passes/brdf_features.hpp computes both from the
+// frame's materials; docs/LIGHTING.md, "Specialised BRDF"). Without them: every model and layer.
 #ifndef LGH_BRDF_GLSL
 #define LGH_BRDF_GLSL
 
 #include "include/common.glsl"
 #include "include/material_models.glsl"
+
+#ifndef LGH_BRDF_MODELS
+#define LGH_BRDF_MODELS 0x7fffffff
+#endif
+#ifndef LGH_BRDF_LAYERS
+#define LGH_BRDF_LAYERS 0x7fffffff
+#endif
+#define LGH_BRDF_HAS_MODEL(bits) ((LGH_BRDF_MODELS & (bits)) != 0)
+#define LGH_BRDF_HAS_LAYER(bits) ((LGH_BRDF_LAYERS & (bits)) != 0)
 
 struct SurfacePoint {
   vec3 position;
@@ -108,11 +121,13 @@ BrdfLobes noLobes() { return BrdfLobes(vec3(0.0), vec3(0.0)); }
 BrdfLobes metallicRoughnessLobes(SurfacePoint s, vec3 toViewer, vec3 toLight) {
   float NdotL = dot(s.normal, toLight);
   vec3 transmitted = vec3(0.0);
+#if LGH_BRDF_HAS_LAYER(MATERIAL_LAYER_BIT_TRANSMISSION)
   if ((s.layers & MATERIAL_LAYER_TRANSMISSION) != 0u && NdotL < 0.0) {
     // Light from behind a transmissive surface: the transmitted share of the diffuse lobe.
     transmitted = s.transmission * (1.0 - s.metallic) * s.baseColor * s.transmissionTint *
                   INV_PI * -NdotL;
   }
+#endif
   if (NdotL <= 0.0) return BrdfLobes(transmitted, vec3(0.0));
   float NdotV = max(dot(s.normal, toViewer), 1e-4);
   vec3 H = normalize(toLight + toViewer);
@@ -126,6 +141,7 @@ BrdfLobes metallicRoughnessLobes(SurfacePoint s, vec3 toViewer, vec3 toLight) {
   lobes.diffuse = (vec3(1.0) - F) * diffuseShare * s.baseColor * INV_PI * NdotL;
   lobes.specular = F * distributionGgx(NdotH, alphaRoughness) *
                    visibilitySmithGgxCorrelated(NdotL, NdotV, alphaRoughness) * NdotL;
+#if LGH_BRDF_HAS_LAYER(MATERIAL_LAYER_BIT_SHEEN)
   if ((s.layers & MATERIAL_LAYER_SHEEN) != 0u) {
     // Energy the sheen takes from the base: its directional albedo, approximated by a constant
     // fraction of the sheen colour (docs/MATERIALS.md).
@@ -135,6 +151,8 @@ BrdfLobes metallicRoughnessLobes(SurfacePoint s, vec3 toViewer, vec3 toLight) {
     lobes.diffuse *= kept;
     lobes.specular = lobes.specular * kept + sheen * NdotL;
   }
+#endif
+#if LGH_BRDF_HAS_LAYER(MATERIAL_LAYER_BIT_CLEARCOAT)
   if ((s.layers & MATERIAL_LAYER_CLEARCOAT) != 0u) {
     float ccNdotL = dot(s.clearcoatNormal, toLight);
     float ccNdotV = max(dot(s.clearcoatNormal, toViewer), 1e-4);
@@ -148,6 +166,7 @@ BrdfLobes metallicRoughnessLobes(SurfacePoint s, vec3 toViewer, vec3 toLight) {
     lobes.diffuse *= 1.0 - Fc;
     lobes.specular = lobes.specular * (1.0 - Fc) + vec3(coat);
   }
+#endif
   lobes.diffuse += transmitted;
   return lobes;
 }
@@ -236,21 +255,35 @@ BrdfLobes cookTorranceLobes(SurfacePoint s, vec3 toViewer, vec3 toLight) {
 
 // Reflected radiance per unit incident irradiance for the surface's material model, per lobe.
 // Unlit surfaces reflect nothing: their colour is emitted (the G-buffer pass writes it to the
-// emissive target).
+// emissive target). Models left out of LGH_BRDF_MODELS have no case: the frame has none of them.
 BrdfLobes evaluateBrdfLobes(SurfacePoint s, vec3 toViewer, vec3 toLight) {
   switch (s.model) {
+#if LGH_BRDF_HAS_MODEL(MATERIAL_MODEL_BIT_UNLIT)
     case MATERIAL_MODEL_UNLIT:
       return noLobes();
+#endif
+#if LGH_BRDF_HAS_MODEL(MATERIAL_MODEL_BIT_PHONG)
     case MATERIAL_MODEL_PHONG:
       return phongLobes(s, toViewer, toLight, false);
+#endif
+#if LGH_BRDF_HAS_MODEL(MATERIAL_MODEL_BIT_BLINN_PHONG)
     case MATERIAL_MODEL_BLINN_PHONG:
       return phongLobes(s, toViewer, toLight, true);
+#endif
+#if LGH_BRDF_HAS_MODEL(MATERIAL_MODEL_BIT_OREN_NAYAR)
     case MATERIAL_MODEL_OREN_NAYAR:
       return orenNayarLobes(s, toViewer, toLight);
+#endif
+#if LGH_BRDF_HAS_MODEL(MATERIAL_MODEL_BIT_COOK_TORRANCE)
     case MATERIAL_MODEL_COOK_TORRANCE:
       return cookTorranceLobes(s, toViewer, toLight);
+#endif
     default:
+#if LGH_BRDF_HAS_MODEL(MATERIAL_MODEL_BIT_METALLIC_ROUGHNESS)
       return metallicRoughnessLobes(s, toViewer, toLight);
+#else
+      return noLobes();
+#endif
   }
 }
 

@@ -43,11 +43,17 @@ bool readSurface(ivec2 pixel, out SurfacePoint s) {
                      material.r, material.g, albedo.a);
   s.model = uint(material.b * 255.0 + 0.5);
   uint flags = uint(material.a * 255.0 + 0.5);
+  // Under LGH_BRDF_MODELS / LGH_BRDF_LAYERS (include/brdf.glsl), only what the frame has: the
+  // fields of the rest keep defaultSurface()'s constants.
   if (isClassicModel(s.model)) {
+#if LGH_BRDF_HAS_MODEL(MATERIAL_MODEL_BITS_CLASSIC)
     decodeClassic(texelFetch(gLayers, pixel, 0), flags, s);
+#endif
   } else {
     s.layers = flags;
+#if LGH_BRDF_LAYERS != 0
     if (s.layers != 0u) decodeLayers(texelFetch(gLayers, pixel, 0), s);
+#endif
   }
   s.selfShadowMask = uint(max(position.w - 1.0, 0.0) + 0.5);
   return position.w > 0.5;

@@ -24,6 +24,20 @@ bool isClassicModel(uint model) { return model >= MATERIAL_MODEL_PHONG; }
 #define MATERIAL_LAYER_SPECULAR 4u      // KHR_materials_specular / KHR_materials_ior
 #define MATERIAL_LAYER_TRANSMISSION 8u  // KHR_materials_transmission / KHR_materials_volume
 
+// The same numbers as bits for #if, which takes no unsigned literals: the masks LGH_BRDF_MODELS
+// (1 << MATERIAL_MODEL_*) and LGH_BRDF_LAYERS that specialise include/brdf.glsl.
+#define MATERIAL_MODEL_BIT_METALLIC_ROUGHNESS 1
+#define MATERIAL_MODEL_BIT_UNLIT 2
+#define MATERIAL_MODEL_BIT_PHONG 4
+#define MATERIAL_MODEL_BIT_BLINN_PHONG 8
+#define MATERIAL_MODEL_BIT_OREN_NAYAR 16
+#define MATERIAL_MODEL_BIT_COOK_TORRANCE 32
+#define MATERIAL_MODEL_BITS_CLASSIC 60  // Phong, Blinn-Phong, Oren-Nayar, Cook-Torrance
+#define MATERIAL_LAYER_BIT_CLEARCOAT 1
+#define MATERIAL_LAYER_BIT_SHEEN 2
+#define MATERIAL_LAYER_BIT_SPECULAR 4
+#define MATERIAL_LAYER_BIT_TRANSMISSION 8
+
 // Classic models use the same byte for their own flags.
 #define MATERIAL_CLASSIC_VERTEX_LIT 1u  // the layers target's w holds per-vertex/primitive lighting
 

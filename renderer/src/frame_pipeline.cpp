@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "core/stopwatch.hpp"
+#include "passes/brdf_features.hpp"
 #include "passes/lgh_lighting_common.hpp"
 #include "passes/light_buffer.hpp"
 #include "scene/material_table.hpp"
@@ -86,7 +87,8 @@ void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached
     if (probe != nullptr) prepareProbe(request, cached, *probe);
     const LghGiInputs gi{request.settings.gi,    lights, lightBuffer_.id(),
                          shadowSettings.tracing, gi_,    materials.materials()};
-    lghLighting_->run(lgh, cached, camera, targets_, timer, report, probe, &gi);
+    const BrdfFeatures brdf = brdfFeatures(materials, cached.gpu->drawItems());
+    lghLighting_->run(lgh, cached, camera, brdf, targets_, timer, report, probe, &gi);
     if (probe != nullptr) probe->visibility = nullptr;  // it refers to this frame's scene
     samples = lghLighting_->shadowSamples();
   }

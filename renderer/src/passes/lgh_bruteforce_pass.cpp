@@ -18,14 +18,16 @@ constexpr int kRaysPerChunk = 64;  // vk::kMaxRaysPerPixel
 
 void LghBruteForcePass::run(GLuint pointLights, int count, GLuint levels,
                             const CameraMatrices& camera, const FrameTargets& frame,
-                            const PointLightVisibility& visibility, float minDistance) {
+                            const BrdfFeatures& brdf, const PointLightVisibility& visibility,
+                            float minDistance) {
   if (frame.width != width_ || frame.height != height_) {
     output_ = gl::Texture(GL_TEXTURE_2D);
     glTextureStorage2D(output_.id(), 1, GL_RGBA32F, frame.width, frame.height);
     width_ = frame.width;
     height_ = frame.height;
   }
-  const std::string defines = visibility ? "#define LGH_SHADOWED 1\n" : "";
+  const std::string defines =
+      (visibility ? "#define LGH_SHADOWED 1\n" : std::string()) + brdf.defines();
   const GLuint program = program_.get(defines, [](const std::string& text) {
     return gl::buildComputeProgram("lgh_bruteforce.comp", text);
   });

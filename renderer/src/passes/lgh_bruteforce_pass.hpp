@@ -27,9 +27,10 @@ class LghBruteForcePass {
  public:
   // `visibility`: shadowed with its rays (in chunks of 64 lights), unshadowed when empty.
   // `minDistance`: the clamp's d_min in world units (0: none); < 0: the hierarchy's, h_1.
+  // `brdf`: what the kernel's BRDF is compiled for, as the lighting passes'.
   void run(GLuint pointLights, int count, GLuint levels, const CameraMatrices& camera,
-           const FrameTargets& frame, const PointLightVisibility& visibility = {},
-           float minDistance = -1.0F);
+           const FrameTargets& frame, const BrdfFeatures& brdf,
+           const PointLightVisibility& visibility = {}, float minDistance = -1.0F);
   // The last run's image (waits for the GPU).
   FloatImage read() const;
 

@@ -22,6 +22,7 @@ void LghComputeLightingPass::run(const LghHierarchyBuffers& hierarchy,
   std::string defines = fmt::format("#define LGH_SAMPLES {}\n", params.samples);
   if (direct) defines += "#define LGH_DIRECT_OUTPUT 1\n";
   if (params.overdraw) defines += "#define LGH_OVERDRAW 1\n";
+  defines += params.brdf.defines();
   const GLuint program = programs_.get(defines, [](const std::string& text) {
     return gl::buildComputeProgram("lgh_lighting.comp", text);
   });

@@ -81,8 +81,9 @@ void LghFrameLighting::collectTimings(TimingTable& table) {
 }
 
 void LghFrameLighting::run(const LghSettings& settings, const CachedScene& cached,
-                           const CameraMatrices& camera, FrameTargets& frame, gl::GpuTimer& timer,
-                           FrameReport& report, LghFrameProbe* probe, const LghGiInputs* gi) {
+                           const CameraMatrices& camera, const BrdfFeatures& brdf,
+                           FrameTargets& frame, gl::GpuTimer& timer, FrameReport& report,
+                           LghFrameProbe* probe, const LghGiInputs* gi) {
   sampled_ = false;
   giTracing_ = nullptr;
   vplLayout_ = {};
@@ -107,12 +108,14 @@ void LghFrameLighting::run(const LghSettings& settings, const CachedScene& cache
   }
   LghLightingParams params = LghLightingParams::fromSettings(settings);
   params.overdraw = probe != nullptr && probe->overdraw;
+  params.brdf = probe != nullptr && probe->genericBrdf ? BrdfFeatures{} : brdf;
   targets_.resize(frame.width, frame.height, params.interleave, params.samples);
   const LightingPath path = choosePath(settings.path, params, camera, frame, report);
   light(path, params, camera, frame, timer);
   sampled_ = true;
   report.decide("lgh_lighting", std::string(enumName(path)));
   report.decide("lgh_shadow_samples", std::to_string(params.samples));
+  report.decide("lgh_brdf", params.brdf.describe());
   if (path == LightingPath::Raster && params.locked) {
     const bool interlock = raster_.lockMode(true) == LghRasterLightingPass::LockMode::Interlock;
     report.decide("lgh_reservoir_lock", interlock ? "interlock" : "spin");
@@ -122,7 +125,7 @@ void LghFrameLighting::run(const LghSettings& settings, const CachedScene& cache
   if (probe != nullptr) {
     probe->path = path;
     probe->vplLayout = vplLayout_;
-    readProbe(camera, frame, timer, *probe, cached, lightPaths ? gi : nullptr);
+    readProbe(params, camera, frame, timer, *probe, cached, lightPaths ? gi : nullptr);
     if (probe->bruteForce) {
       report.decide("reference", probe->shadowedReference ? "brute-force-shadowed" : "brute-force");
     }
@@ -202,8 +205,8 @@ void LghFrameLighting::light(LightingPath path, const LghLightingParams& params,
   }
 }
 
-void LghFrameLighting::readProbe(const CameraMatrices& camera, FrameTargets& frame,
-                                 gl::GpuTimer& timer, LghFrameProbe& probe,
+void LghFrameLighting::readProbe(const LghLightingParams& params, const CameraMatrices& camera,
+                                 FrameTargets& frame, gl::GpuTimer& timer, LghFrameProbe& probe,
                                  const CachedScene& scene, const LghGiInputs* gi) {
   if (probe.pathTracedSamples > 0 && gi != nullptr) {
     if (!pathTracer_) pathTracer_ = std::make_unique<PathTracedReference>();
@@ -217,7 +220,7 @@ void LghFrameLighting::readProbe(const CameraMatrices& camera, FrameTargets& fra
     const float minDistance = probe.referenceClamp == LghFrameProbe::ReferenceClamp::Hierarchy
                                   ? -1.0F
                                   : std::max(probe.referenceMinDistance, 0.0F);
-    bruteForce_.run(vplBuffer_.id(), vplCount_, builder_.levels(), camera, frame,
+    bruteForce_.run(vplBuffer_.id(), vplCount_, builder_.levels(), camera, frame, params.brdf,
                     probe.shadowedReference ? probe.visibility : PointLightVisibility{},
                     minDistance);
   }

@@ -53,6 +53,9 @@ struct LghFrameProbe {
   // The path-traced reference (settings.gi frames only): samples per pixel, 0 for none.
   int pathTracedSamples = 0;
   bool readGBuffer = false;  // fill `gbuffer` (for CPU references)
+  // Compile the lighting kernels for every material model and layer, not only the frame's (to
+  // compare the specialised kernels with the generic one).
+  bool genericBrdf = false;
 
   FloatImage indirect;    // the LGH lighting, linear, top row first
   FloatImage reference;   // the brute-force image (bruteForce)
@@ -97,8 +100,10 @@ class LghFrameLighting {
   LghFrameLighting(const LghFrameLighting&) = delete;
   LghFrameLighting& operator=(const LghFrameLighting&) = delete;
 
+  // `brdf`: the material models and layers of the frame's G-buffer (brdfFeatures()), which the
+  // lighting kernels are compiled for.
   void run(const LghSettings& settings, const CachedScene& scene, const CameraMatrices& camera,
-           FrameTargets& frame, gl::GpuTimer& timer, FrameReport& report,
+           const BrdfFeatures& brdf, FrameTargets& frame, gl::GpuTimer& timer, FrameReport& report,
            LghFrameProbe* probe = nullptr, const LghGiInputs* gi = nullptr);
 
   // The rows of the last run that come after the GL timer (the light paths' Vulkan time).
@@ -136,8 +141,9 @@ class LghFrameLighting {
                                  FrameTargets& frame);
   void light(LightingPath path, const LghLightingParams& params, const CameraMatrices& camera,
              FrameTargets& frame, gl::GpuTimer& timer);
-  void readProbe(const CameraMatrices& camera, FrameTargets& frame, gl::GpuTimer& timer,
-                 LghFrameProbe& probe, const CachedScene& scene, const LghGiInputs* gi);
+  void readProbe(const LghLightingParams& params, const CameraMatrices& camera, FrameTargets& frame,
+                 gl::GpuTimer& timer, LghFrameProbe& probe, const CachedScene& scene,
+                 const LghGiInputs* gi);
 
   LghBuilder builder_;
   gl::SizedBuffer vplBuffer_;

@@ -15,6 +15,7 @@
 #include "gl/slots.hpp"
 #include "lgh/image.hpp"
 #include "lgh/request.hpp"
+#include "passes/brdf_features.hpp"
 #include "passes/frame_targets.hpp"
 #include "scene/camera.hpp"
 
@@ -30,6 +31,7 @@ struct LghLightingParams {
   int interleave = 1;         // n: n x n tiles
   bool locked = false;
   bool overdraw = false;  // debug counter (slower: image atomics / stores per pixel)
+  BrdfFeatures brdf;      // what the kernels' BRDF is compiled for (default: every model)
 
   static LghLightingParams fromSettings(const LghSettings& settings);
 };

@@ -93,7 +93,7 @@ std::string LghRasterLightingPass::fragmentDefines(const LghLightingParams& para
       break;
   }
   if (params.overdraw) defines += "#define LGH_OVERDRAW 1\n";
-  return defines;
+  return defines + params.brdf.defines();
 }
 
 void LghRasterLightingPass::run(const LghHierarchyBuffers& hierarchy,

@@ -6,21 +6,10 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "passes/brdf_features.hpp"
+
 namespace lgh {
 namespace {
-
-// MATERIAL_LAYER_* bits of glsl/include/material_models.glsl.
-GLuint materialLayers(const Material& m) {
-  GLuint layers = 0;
-  if (m.clearcoat.factor > 0.0F) layers |= 1U;
-  if (m.sheen.colorFactor != glm::vec3(0.0F)) layers |= 2U;
-  const bool specular = m.specular.factor != 1.0F || m.specular.colorFactor != glm::vec3(1.0F) ||
-                        m.specular.ior != 1.5F || m.specular.texture.valid() ||
-                        m.specular.colorTexture.valid();
-  if (specular) layers |= 4U;
-  if (m.transmission.factor > 0.0F) layers |= 8U;
-  return layers;
-}
 
 // KHR_materials_ior: F0 of the dielectric base; ior 0 means F0 = 1.
 float dielectricF0(float ior) {
@@ -133,7 +122,7 @@ void bindMaterial(GLuint program, const Material& material, GpuScene& gpuScene, 
   u.set("uOcclusionStrength", material.occlusionStrength);
   u.set("uAlphaCutoff", material.alphaMode == AlphaMode::Mask ? material.alphaCutoff : -1.0F);
   u.set("uModel", static_cast<GLuint>(model));
-  u.set("uLayers", model == MaterialModel::MetallicRoughness ? materialLayers(material) : 0U);
+  u.set("uLayers", model == MaterialModel::MetallicRoughness ? materialLayerBits(material) : 0U);
   const Clearcoat& cc = material.clearcoat;
   u.set("uClearcoat", glm::vec3(cc.factor, cc.roughness, cc.normalScale));
   u.set("uSheen", glm::vec4(material.sheen.colorFactor, material.sheen.roughnessFactor));
