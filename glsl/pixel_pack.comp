@@ -26,7 +26,9 @@ uint codeAt(uint byteIndex) {
 }
 
 void main() {
-  uint word = gl_GlobalInvocationID.x;
+  // Rows of work groups: one row holds at most GL_MAX_COMPUTE_WORK_GROUP_COUNT[0] of them.
+  uint word = gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * gl_WorkGroupSize.x) +
+              gl_GlobalInvocationID.x;
   if (word >= uWordCount) return;
   uint first = word * 4u;
   if (uChannels == 4) {

@@ -20,8 +20,10 @@
 
 #include "gl/gl_objects.hpp"
 #include "gl/shader_library.hpp"
+#include "gl/slots.hpp"
 #include "image/image_common.hpp"
 #include "lgh/renderer.hpp"
+#include "passes/pixel_pack_pass.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -220,6 +222,23 @@ TEST_F(DisplayTransform, EveryOutputLayoutReadsBackTopRowFirst) {
   for (std::size_t i = 0; i < full.rgba.size(); ++i) {
     EXPECT_NEAR(half.rgba[i], full.rgba[i], std::fabs(full.rgba[i]) / 1024.0F + 1e-7F) << i;
   }
+}
+
+// The pixel pack pass's work groups cover every word in rows within GL's group count limit: a
+// 4096 x 4096 RGBA frame (16,777,216 words, 65,536 groups) takes two rows at the guaranteed 65,535.
+TEST(PixelPackDispatch, CoversEveryWordInRowsWithinTheLimit) {
+  constexpr unsigned kLimit = 65535;
+  constexpr std::size_t kGroup = LGH_PACK_GROUP;
+  for (const std::size_t words :
+       {std::size_t{1}, kGroup, kGroup + 1, kGroup * kLimit, kGroup * kLimit + 1,
+        std::size_t{4096} * 4096, std::size_t{8192} * 8192 * 3 / 4}) {
+    const lgh::PixelPackPass::Dispatch groups = lgh::PixelPackPass::dispatchFor(words, kLimit);
+    EXPECT_LE(groups.x, kLimit) << words;
+    EXPECT_GE(std::size_t{groups.x} * groups.y * kGroup, words) << words;
+    EXPECT_LT(std::size_t{groups.x} * (groups.y - 1) * kGroup, words) << "a row of nothing";
+  }
+  EXPECT_EQ(lgh::PixelPackPass::dispatchFor(std::size_t{4096} * 4096, kLimit).y, 2U);
+  EXPECT_EQ(lgh::PixelPackPass::dispatchFor(0, kLimit).x, 0U);
 }
 
 }  // namespace

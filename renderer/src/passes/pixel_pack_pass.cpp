@@ -1,5 +1,7 @@
 #include "passes/pixel_pack_pass.hpp"
 
+#include <algorithm>
+
 #include "gl/shader_library.hpp"
 #include "gl/slots.hpp"
 
@@ -24,7 +26,18 @@ void copyLinearLight(const FrameTargets& targets, OutputPixels pixels, FramePixe
 
 }  // namespace
 
-PixelPackPass::PixelPackPass() : program_(gl::buildComputeProgram("pixel_pack.comp")) {}
+PixelPackPass::PixelPackPass() : program_(gl::buildComputeProgram("pixel_pack.comp")) {
+  GLint maxGroupsX = 65535;
+  glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &maxGroupsX);
+  maxGroupsX_ = static_cast<unsigned>(std::max(maxGroupsX, 1));
+}
+
+PixelPackPass::Dispatch PixelPackPass::dispatchFor(std::size_t words, unsigned maxGroupsX) {
+  const std::size_t groups = (words + LGH_PACK_GROUP - 1) / LGH_PACK_GROUP;
+  if (groups == 0) return {};
+  const std::size_t x = std::min<std::size_t>(groups, std::max(maxGroupsX, 1U));
+  return {static_cast<unsigned>(x), static_cast<unsigned>((groups + x - 1) / x)};
+}
 
 std::size_t PixelPackPass::bufferBytes(const FramePixels& pixels) {
   return wordsFor(pixels.size()) * kWordBytes;
@@ -55,7 +68,8 @@ void PixelPackPass::packDisplayCodes(const FrameTargets& targets, OutputPixels p
   glBindTextureUnit(0, targets.outputs[static_cast<int>(pixels)].texture.id());
   glBindBufferRange(GL_SHADER_STORAGE_BUFFER, LGH_BIND_PACKED_PIXELS, packBuffer, 0,
                     static_cast<GLsizeiptr>(words * kWordBytes));
-  glDispatchCompute(static_cast<GLuint>((words + LGH_PACK_GROUP - 1) / LGH_PACK_GROUP), 1, 1);
+  const Dispatch groups = dispatchFor(words, maxGroupsX_);
+  glDispatchCompute(groups.x, groups.y, 1);
   // The buffer is mapped persistently: the CPU reads it once the frame's fence has signalled.
   glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_PACKED_PIXELS, 0);

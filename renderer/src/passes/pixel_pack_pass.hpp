@@ -24,6 +24,15 @@ class PixelPackPass {
   // The size of the pack buffer a frame of `pixels` needs (its bytes rounded up to whole words).
   static std::size_t bufferBytes(const FramePixels& pixels);
 
+  // The work groups that cover `words` (LGH_PACK_GROUP words each) in rows of at most
+  // `maxGroupsX`: a 4096 x 4096 RGBA frame needs 65,536 groups, one more than GL's guaranteed
+  // GL_MAX_COMPUTE_WORK_GROUP_COUNT.
+  struct Dispatch {
+    unsigned x = 0;
+    unsigned y = 0;
+  };
+  static Dispatch dispatchFor(std::size_t words, unsigned maxGroupsX);
+
   // Issues the copy of the output into `packBuffer` (offset 0) as `layout`; returns at once: the
   // bytes are there once a fence inserted after it has signalled.
   void run(const FrameTargets& targets, OutputPixels pixels, FramePixels::Layout layout,
@@ -34,6 +43,7 @@ class PixelPackPass {
                         FramePixels::Layout layout, GLuint packBuffer);
 
   gl::Program program_;
+  unsigned maxGroupsX_ = 65535;
 };
 
 }  // namespace lgh
