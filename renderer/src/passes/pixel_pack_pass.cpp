@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <spdlog/spdlog.h>
+
 #include "gl/shader_library.hpp"
 #include "gl/slots.hpp"
 
@@ -12,13 +14,30 @@ constexpr std::size_t kWordBytes = 4;
 
 std::size_t wordsFor(std::size_t bytes) { return (bytes + kWordBytes - 1) / kWordBytes; }
 
-void copyLinearLight(const FrameTargets& targets, OutputPixels pixels, FramePixels::Layout layout,
-                     GLuint packBuffer) {
-  const GLenum type = layout == FramePixels::Layout::RgbaHalf ? GL_HALF_FLOAT : GL_FLOAT;
+// glGetTextureImage into the pack buffer, in the layout's format.
+void copyByDriver(const FrameTargets& targets, OutputPixels pixels, FramePixels::Layout layout,
+                  GLuint packBuffer) {
+  GLenum format = GL_RGBA;
+  GLenum type = GL_FLOAT;
+  switch (layout) {
+    case FramePixels::Layout::Rgb8:
+      format = GL_RGB_INTEGER;
+      type = GL_UNSIGNED_BYTE;
+      break;
+    case FramePixels::Layout::Rgba8:
+      format = GL_RGBA_INTEGER;
+      type = GL_UNSIGNED_BYTE;
+      break;
+    case FramePixels::Layout::RgbaHalf:
+      type = GL_HALF_FLOAT;
+      break;
+    case FramePixels::Layout::RgbaFloat:
+      break;
+  }
   const FramePixels probe{targets.width, targets.height, layout, nullptr};
   glPixelStorei(GL_PACK_ALIGNMENT, 1);  // rows tightly packed, whatever their length
   glBindBuffer(GL_PIXEL_PACK_BUFFER, packBuffer);
-  glGetTextureImage(targets.outputs[static_cast<int>(pixels)].texture.id(), 0, GL_RGBA, type,
+  glGetTextureImage(targets.outputs[static_cast<int>(pixels)].texture.id(), 0, format, type,
                     static_cast<GLsizei>(probe.size()), nullptr);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
@@ -30,6 +49,9 @@ PixelPackPass::PixelPackPass() : program_(gl::buildComputeProgram("pixel_pack.co
   GLint maxGroupsX = 65535;
   glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &maxGroupsX);
   maxGroupsX_ = static_cast<unsigned>(std::max(maxGroupsX, 1));
+  GLint64 maxBlockBytes = 1 << 27;  // GL's guaranteed minimum
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlockBytes);
+  maxBlockBytes_ = static_cast<std::size_t>(std::max<GLint64>(maxBlockBytes, 0));
 }
 
 PixelPackPass::Dispatch PixelPackPass::dispatchFor(std::size_t words, unsigned maxGroupsX) {
@@ -46,11 +68,22 @@ std::size_t PixelPackPass::bufferBytes(const FramePixels& pixels) {
 void PixelPackPass::run(const FrameTargets& targets, OutputPixels pixels,
                         FramePixels::Layout layout, GLuint packBuffer) {
   const FramePixels probe{targets.width, targets.height, layout, nullptr};
-  if (probe.isDisplay()) {
-    packDisplayCodes(targets, pixels, layout, packBuffer);
-  } else {
-    copyLinearLight(targets, pixels, layout, packBuffer);
+  if (!probe.isDisplay()) {
+    copyByDriver(targets, pixels, layout, packBuffer);  // the target's own format: a plain copy
+    return;
   }
+  if (bufferBytes(probe) > maxBlockBytes_) {
+    if (!warnedLargeFrame_) {
+      spdlog::info(
+          "renderer: frames over {} MB are read back by glGetTextureImage (the "
+          "driver's storage-block limit), which is slower on some drivers",
+          maxBlockBytes_ >> 20);
+      warnedLargeFrame_ = true;
+    }
+    copyByDriver(targets, pixels, layout, packBuffer);
+    return;
+  }
+  packDisplayCodes(targets, pixels, layout, packBuffer);
 }
 
 void PixelPackPass::packDisplayCodes(const FrameTargets& targets, OutputPixels pixels,

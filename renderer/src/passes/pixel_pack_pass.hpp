@@ -1,7 +1,8 @@
 // Pixel pack pass: the last GPU step of a frame, behind its fence.
 //   inputs:  FrameTargets::output(pixels), rows already in the image's order
 //   outputs: the frame's pixel-pack buffer (gl/readback_buffers.hpp) holding FramePixels of
-//            `layout`: display codes packed 3 or 4 bytes per pixel by glsl/pixel_pack.comp, or
+//            `layout`: display codes packed 3 or 4 bytes per pixel by glsl/pixel_pack.comp (by
+//            glGetTextureImage for a frame larger than the driver's shader storage block), or
 //            half / float linear light copied by glGetTextureImage (the target's own format)
 //   shaders: glsl/pixel_pack.comp
 // Display codes are packed by a compute shader rather than by glGetTextureImage: reading an
@@ -44,6 +45,8 @@ class PixelPackPass {
 
   gl::Program program_;
   unsigned maxGroupsX_ = 65535;
+  std::size_t maxBlockBytes_ = std::size_t{1} << 27;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+  bool warnedLargeFrame_ = false;
 };
 
 }  // namespace lgh
