@@ -35,6 +35,14 @@ void failJob(RenderJob& job, const ApiError& error) {
   for (const auto& ticket : job.tickets) ticket->fail(error);
 }
 
+// Workers make and destroy their renderers one at a time. On the H200, two workers starting at
+// once on one GPU both hung in their start-up (the watchdog ended lghd after 90 s); the driver's
+// context and device set-up is not to be raced (docs/BENCHMARKS.md, "Several render workers").
+std::mutex& rendererSetupMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 }  // namespace
 
 const char* workerStateName(RenderWorker::State state) {
@@ -204,11 +212,15 @@ bool RenderWorker::bringUpRenderer() {
   const auto start = Clock::now();
   try {
     const WatchdogScope watched(watchdog_.get(), start + kStartUpAllowance + options_.watchdog);
-    auto renderer = std::make_unique<lgh::Renderer>(options_.renderer);
-    const lgh::RenderResult selfTest = renderer->render(selfTestRequest());
-    if (selfTest.encoded.empty()) throw internalError("the self-test render produced no image");
+    std::unique_ptr<lgh::Renderer> renderer;
+    {
+      const std::lock_guard setup(rendererSetupMutex());
+      renderer = std::make_unique<lgh::Renderer>(options_.renderer);
+      const lgh::RenderResult selfTest = renderer->render(selfTestRequest());
+      if (selfTest.encoded.empty()) throw internalError("the self-test render produced no image");
+    }
     std::lock_guard lock(mutex_);
-    renderer_ = std::move(renderer);
+    std::swap(renderer_, renderer);  // an older one (none after releaseRenderer) goes unlocked
   } catch (const std::exception& error) {
     const std::string failure = std::string("no working GL context: ") + error.what();
     logging::event(spdlog::level::critical, "renderer_failed",
@@ -530,9 +542,16 @@ void RenderWorker::publishRendererState() {
 }
 
 // Under mutex_, so that status() may read the renderer's read-back memory from HTTP threads.
+// Destroyed outside the lock: tearing down a context can block in the driver (seen on the H200
+// with two contexts on one GPU), and join() must still be able to take the lock and time out.
 void RenderWorker::releaseRenderer() {
-  std::lock_guard lock(mutex_);
-  renderer_.reset();
+  std::unique_ptr<lgh::Renderer> renderer;
+  {
+    std::lock_guard lock(mutex_);
+    renderer = std::move(renderer_);
+  }
+  const std::lock_guard setup(rendererSetupMutex());
+  renderer.reset();
 }
 
 }  // namespace lghd
