@@ -56,29 +56,8 @@ int minFilterEnum(bool nearest, MipmapMode mipmaps) {
   return kLinearMipmapLinear;
 }
 
-// Every texture reference of a material, to change how they are sampled.
-std::vector<TextureRef*> allTextures(Material& m) {
-  return {&m.baseColorTexture,
-          &m.metallicRoughnessTexture,
-          &m.normalTexture,
-          &m.occlusionTexture,
-          &m.emissiveTexture,
-          &m.clearcoat.texture,
-          &m.clearcoat.roughnessTexture,
-          &m.clearcoat.normalTexture,
-          &m.sheen.colorTexture,
-          &m.sheen.roughnessTexture,
-          &m.specular.texture,
-          &m.specular.colorTexture,
-          &m.transmission.texture,
-          &m.classic.specularTexture,
-          &m.classic.shininessTexture,
-          &m.lightMap,
-          &m.surface.heightTexture};
-}
-
 void applySampling(const SamplingParameters& sampling, Material& material) {
-  for (TextureRef* ref : allTextures(material)) {
+  for (TextureRef* ref : allMaterialTextures(material)) {
     Sampler& s = ref->sampler;
     if (sampling.wrapS) s.wrapS = wrapEnum(*sampling.wrapS);
     if (sampling.wrapT) s.wrapT = wrapEnum(*sampling.wrapT);

@@ -209,6 +209,30 @@ inline constexpr std::size_t kMaterialTextureSlots = 15;
 std::array<MaterialTextureSlot, kMaterialTextureSlots> materialTextureSlots(
     const Material& material);
 
+// Every texture reference of a material (Material& or const Material&), in one fixed order: the
+// scene parser worker's messages carry them in it; the sampling overrides change them all. Both
+// specular pairs are here (the shader's slots 10 and 11 hold one of them): two more than slots.
+template <typename M>
+auto allMaterialTextures(M& m) {
+  return std::array{&m.baseColorTexture,
+                    &m.metallicRoughnessTexture,
+                    &m.normalTexture,
+                    &m.occlusionTexture,
+                    &m.emissiveTexture,
+                    &m.clearcoat.texture,
+                    &m.clearcoat.roughnessTexture,
+                    &m.clearcoat.normalTexture,
+                    &m.sheen.colorTexture,
+                    &m.sheen.roughnessTexture,
+                    &m.specular.texture,
+                    &m.specular.colorTexture,
+                    &m.transmission.texture,
+                    &m.classic.specularTexture,
+                    &m.classic.shininessTexture,
+                    &m.surface.heightTexture,
+                    &m.lightMap};
+}
+
 struct SceneCamera {
   std::string name;
   bool perspective = true;

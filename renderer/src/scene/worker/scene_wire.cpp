@@ -155,30 +155,9 @@ class Reader {
 
 // --- Scene -----------------------------------------------------------------------------------
 
-// Every texture of a material, in one order for writing, reading and checking.
-template <typename M>
-auto texturesOf(M& m) {
-  return std::array{&m.baseColorTexture,
-                    &m.metallicRoughnessTexture,
-                    &m.normalTexture,
-                    &m.occlusionTexture,
-                    &m.emissiveTexture,
-                    &m.clearcoat.texture,
-                    &m.clearcoat.roughnessTexture,
-                    &m.clearcoat.normalTexture,
-                    &m.sheen.colorTexture,
-                    &m.sheen.roughnessTexture,
-                    &m.specular.texture,
-                    &m.specular.colorTexture,
-                    &m.transmission.texture,
-                    &m.classic.specularTexture,
-                    &m.classic.shininessTexture,
-                    &m.surface.heightTexture,
-                    &m.lightMap};
-}
 // The shader's slots 10 and 11 hold either KHR_materials_specular's two textures or the classic
 // models' two (scene.hpp, materialTextureSlots): the messages carry all four.
-static_assert(std::tuple_size_v<decltype(texturesOf(std::declval<Material&>()))> ==
+static_assert(std::tuple_size_v<decltype(allMaterialTextures(std::declval<Material&>()))> ==
                   kMaterialTextureSlots + 2,
               "a Material texture the worker's messages do not carry");
 
@@ -301,7 +280,7 @@ void writeMaterial(Out& out, const Material& m) {
   out.pod(m.doubleSided);
   writeLayers(out, m);
   writeLectureParameters(out, m);
-  for (const TextureRef* texture : texturesOf(m)) writeTexture(out, *texture);
+  for (const TextureRef* texture : allMaterialTextures(m)) writeTexture(out, *texture);
 }
 
 Material readMaterial(Reader& in) {
@@ -318,7 +297,7 @@ Material readMaterial(Reader& in) {
   m.doubleSided = in.flag();
   readLayers(in, m);
   readLectureParameters(in, m);
-  for (TextureRef* texture : texturesOf(m)) *texture = readTexture(in);
+  for (TextureRef* texture : allMaterialTextures(m)) *texture = readTexture(in);
   return m;
 }
 
@@ -539,7 +518,7 @@ void checkIndices(const Scene& scene) {
         m.alphaMode != AlphaMode::Blend) {
       bad("an alpha mode");
     }
-    for (const TextureRef* texture : texturesOf(m)) {
+    for (const TextureRef* texture : allMaterialTextures(m)) {
       if (texture->image >= static_cast<int>(scene.images.size())) bad("a texture's image");
     }
   }
