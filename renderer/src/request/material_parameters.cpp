@@ -1,29 +1,20 @@
 #include "request/material_parameters.hpp"
 
 #include "lgh/request.hpp"
+#include "request/json_read.hpp"
 
 namespace lgh {
 namespace {
 
 using json = nlohmann::json;
 
-template <typename T>
-void read(const json& object, const char* key, std::optional<T>& out) {
-  if (const auto it = object.find(key); it != object.end()) out = it->get<T>();
-}
+using json_read::read;
+using json_read::readEnum;
 
 void readRgb(const json& object, const char* key, std::optional<Rgb>& out) {
   if (const auto it = object.find(key); it != object.end()) {
     out = Rgb{(*it)[0].get<float>(), (*it)[1].get<float>(), (*it)[2].get<float>()};
   }
-}
-
-// The schema's enum lists and the EnumNames tables agree (tests/unit/test_request.cpp).
-template <typename Enum>
-void readEnum(const json& object, const char* key, std::optional<Enum>& out) {
-  const auto it = object.find(key);
-  if (it == object.end()) return;
-  if (const auto value = enumFromName<Enum>(it->get_ref<const std::string&>())) out = *value;
 }
 
 void readTexture(const json& object, const char* key, int defaultTexCoord,

@@ -21,6 +21,7 @@
 #include "lgh/error.hpp"
 #include "lgh/request.hpp"
 #include "request/json_pointer.hpp"
+#include "request/json_read.hpp"
 #include "request/json_text.hpp"
 #include "request/material_parameters.hpp"
 #include "request/schema_validation.hpp"
@@ -115,27 +116,15 @@ class NumberScan {
 
 void rejectNonFiniteNumbers(const json& document) { NumberScan().run(document); }
 
-// --- Reading validated JSON into the structs ---------------------------------------------------
-// The schema has checked types and ranges: these only copy what is present, leaving the struct
-// defaults for what is not.
+// --- Reading validated JSON into the structs (request/json_read.hpp) ---------------------------
 
-template <typename T>
-void read(const json& object, const char* key, T& out) {
-  if (const auto it = object.find(key); it != object.end()) out = it->get<T>();
-}
+using json_read::read;
+using json_read::readEnum;
 
 void readVec3(const json& object, const char* key, Vec3& out) {
   if (const auto it = object.find(key); it != object.end()) {
     for (std::size_t i = 0; i < 3; ++i) out[i] = (*it)[i].get<float>();
   }
-}
-
-// The schema's enum lists and the EnumNames tables agree (a test checks it).
-template <typename Enum>
-void readEnum(const json& object, const char* key, Enum& out) {
-  const auto it = object.find(key);
-  if (it == object.end()) return;
-  if (const auto value = enumFromName<Enum>(it->get_ref<const std::string&>())) out = *value;
 }
 
 LightDesc readLight(const json& object) {
