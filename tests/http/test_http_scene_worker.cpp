@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "daemon_process.hpp"
+#include "gltf_quad.hpp"
 #include "http_helpers.hpp"
 #include "lgh/base64.hpp"
 
@@ -162,57 +163,15 @@ std::string gradientDds() {
 // A quad whose material is the lecture's Blinn-Phong with bump mapping (glTF extras.lgh), its
 // base colour and height map the DDS file.
 std::vector<httplib::MultipartFormData> lectureQuadFiles() {
-  const std::vector<float> positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
-  const std::vector<float> normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
-  const std::vector<float> uvs = {0, 1, 1, 1, 1, 0, 0, 0};
-  const std::vector<std::uint16_t> indices = {0, 1, 2, 0, 2, 3};
-  std::string bin;
-  auto append = [&bin](const void* data, std::size_t size) {
-    bin.append(static_cast<const char*>(data), size);
-  };
-  append(positions.data(), 48);
-  append(normals.data(), 48);
-  append(uvs.data(), 32);
-  append(indices.data(), 12);
   const json extras = {{"lgh",
                         {{"model", "blinn-phong"},
                          {"shininess", 24},
                          {"surface", "bump"},
                          {"height_texture", {{"texture", 0}}},
                          {"height_scale", 0.05}}}};
-  const json gltf = {
-      {"asset", {{"version", "2.0"}}},
-      {"extensionsUsed", {"MSFT_texture_dds"}},
-      {"scenes", {{{"nodes", {0}}}}},
-      {"nodes", {{{"mesh", 0}}}},
-      {"meshes",
-       {{{"primitives",
-          {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}},
-            {"indices", 3},
-            {"material", 0}}}}}}},
-      {"materials",
-       {{{"name", "lecture"},
-         {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
-         {"extras", extras}}}},
-      {"textures", {{{"extensions", {{"MSFT_texture_dds", {{"source", 0}}}}}}}},
-      {"images", {{{"uri", "gradient.dds"}}}},
-      {"accessors",
-       {{{"bufferView", 0},
-         {"componentType", 5126},
-         {"count", 4},
-         {"type", "VEC3"},
-         {"min", {0, 0, 0}},
-         {"max", {1, 1, 0}}},
-        {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
-        {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
-        {{"bufferView", 3}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}},
-      {"bufferViews",
-       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
-        {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 48}},
-        {{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 32}},
-        {{"buffer", 0}, {"byteOffset", 128}, {"byteLength", 12}}}},
-      {"buffers", {{{"uri", "quad.bin"}, {"byteLength", bin.size()}}}}};
-  return {{"file", gltf.dump(), "quad.gltf", "model/gltf+json"},
+  const lgh::test::GltfQuad quad = lgh::test::ddsTexturedQuad("lecture", "gradient.dds", extras);
+  const std::string bin(quad.bin.begin(), quad.bin.end());
+  return {{"file", quad.gltf, "quad.gltf", "model/gltf+json"},
           {"file", bin, "quad.bin", "application/octet-stream"},
           {"file", gradientDds(), "gradient.dds", "image/vnd-ms.dds"}};
 }

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gltf_quad.hpp"
 #include "lgh/base64.hpp"
 #include "lgh/error.hpp"
 #include "lgh/request.hpp"
@@ -294,55 +295,10 @@ TEST(DdsFile, RoundTripAndBoundsChecks) {
 // A .gltf with one textured quad whose material carries `extras` and whose texture 0 is `image`
 // (a PNG-free asset: the image is the DDS file, through MSFT_texture_dds).
 lgh::Scene loadQuad(const json& extras, const std::vector<std::uint8_t>& dds) {
-  const std::vector<float> positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
-  const std::vector<float> normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
-  const std::vector<float> uvs = {0, 1, 1, 1, 1, 0, 0, 0};
-  const std::vector<std::uint16_t> indices = {0, 1, 2, 0, 2, 3};
-  std::vector<std::uint8_t> bin;
-  auto append = [&bin](const void* data, std::size_t size) {
-    const auto* bytes = static_cast<const std::uint8_t*>(data);
-    bin.insert(bin.end(), bytes, bytes + size);
-  };
-  append(positions.data(), 48);
-  append(normals.data(), 48);
-  append(uvs.data(), 32);
-  append(indices.data(), 12);
-  const json gltf = {
-      {"asset", {{"version", "2.0"}}},
-      {"extensionsUsed", {"MSFT_texture_dds"}},
-      {"scenes", {{{"nodes", {0}}}}},
-      {"nodes", {{{"mesh", 0}}}},
-      {"meshes",
-       {{{"primitives",
-          {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}},
-            {"indices", 3},
-            {"material", 0}}}}}}},
-      {"materials",
-       {{{"name", "tiles"},
-         {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
-         {"extras", extras}}}},
-      {"textures", {{{"extensions", {{"MSFT_texture_dds", {{"source", 0}}}}}}}},
-      {"images", {{{"uri", "tiles.dds"}}}},
-      {"accessors",
-       {{{"bufferView", 0},
-         {"componentType", 5126},
-         {"count", 4},
-         {"type", "VEC3"},
-         {"min", {0, 0, 0}},
-         {"max", {1, 1, 0}}},
-        {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
-        {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
-        {{"bufferView", 3}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}},
-      {"bufferViews",
-       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
-        {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 48}},
-        {{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 32}},
-        {{"buffer", 0}, {"byteOffset", 128}, {"byteLength", 12}}}},
-      {"buffers", {{{"uri", "quad.bin"}, {"byteLength", bin.size()}}}}};
-  const std::string text = gltf.dump();
+  const lgh::test::GltfQuad quad = lgh::test::ddsTexturedQuad("tiles", "tiles.dds", extras);
   const std::map<std::string, std::vector<std::uint8_t>> files = {
-      {"quad.gltf", std::vector<std::uint8_t>(text.begin(), text.end())},
-      {"quad.bin", bin},
+      {"quad.gltf", std::vector<std::uint8_t>(quad.gltf.begin(), quad.gltf.end())},
+      {"quad.bin", quad.bin},
       {"tiles.dds", dds}};
   return lgh::loadGltfFromMemory("quad.gltf", files);
 }
