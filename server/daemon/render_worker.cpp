@@ -309,17 +309,13 @@ void RenderWorker::forget(double estimateSeconds) {
   pendingSeconds_ -= estimateSeconds;
 }
 
-const lgh::RenderRequest* RenderWorker::nextRequest(const JobPiece& piece, std::size_t position) {
-  if (position + 1 < piece.tickets.size()) {
-    return &piece.job->tickets[piece.tickets[position + 1]]->request();
-  }
+std::shared_ptr<const RenderTicket> RenderWorker::nextTicket(const JobPiece& piece,
+                                                             std::size_t position) {
+  if (position + 1 < piece.tickets.size()) return piece.job->tickets[piece.tickets[position + 1]];
   std::lock_guard lock(mutex_);
-  // Tickets never change once queued, and the job stays alive in the queue while it is read.
-  if (!pieces_.empty()) {
-    const JobPiece& next = pieces_.front();
-    return &next.job->tickets[next.tickets.front()]->request();
-  }
-  return nullptr;
+  if (pieces_.empty()) return nullptr;
+  const JobPiece& next = pieces_.front();
+  return next.job->tickets[next.tickets.front()];
 }
 
 void RenderWorker::runPiece(const JobPiece& piece) {
@@ -342,7 +338,7 @@ void RenderWorker::runPiece(const JobPiece& piece) {
       metrics_.recordRender("skipped", options_.index);
       continue;
     }
-    submitTicket(piece, position, nextRequest(piece, position));
+    submitTicket(piece, position, nextTicket(piece, position));
     if (!renderer_) {  // recovery failed: this worker is out
       failJob(job, unavailable("no working GL context on GPU " + std::to_string(options_.index)));
       for (std::size_t rest = position + 1; rest < piece.tickets.size(); ++rest) {
@@ -358,7 +354,7 @@ void RenderWorker::runPiece(const JobPiece& piece) {
 // --- Frames in flight ---------------------------------------------------------------------------
 
 void RenderWorker::submitTicket(const JobPiece& piece, std::size_t position,
-                                const lgh::RenderRequest* next) {
+                                const std::shared_ptr<const RenderTicket>& next) {
   const std::shared_ptr<RenderTicket>& ticket = piece.job->tickets[piece.tickets[position]];
   const double estimate = piece.estimates[position];
   const std::size_t bytes = frameBytes(ticket->request());
@@ -377,7 +373,7 @@ void RenderWorker::submitTicket(const JobPiece& piece, std::size_t position,
     const WatchdogScope watched(watchdog_.get(), piece.job->startDeadline + options_.watchdog);
     if (options_.testRenderDelay.count() > 0) std::this_thread::sleep_for(options_.testRenderDelay);
     // The next scene is parsed while this one uploads and renders.
-    if (next != nullptr) renderer_->prefetch(*next);
+    if (next) renderer_->prefetch(next->request());
     renderer_->submit(ticket->request());
     submitted_.push_back({piece.job, ticket, start, start, bytes, estimate});
     std::lock_guard lock(mutex_);

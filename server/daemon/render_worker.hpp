@@ -109,7 +109,9 @@ class RenderWorker {
   void runPiece(const JobPiece& piece);
   void finishPiece();
   void forget(double estimateSeconds);
-  const lgh::RenderRequest* nextRequest(const JobPiece& piece, std::size_t position);
+  // The ticket after `position` (in this piece or the next queued one), owned: a shutdown or a
+  // hang may drop the queued piece, and its job with it, while the current frame renders.
+  std::shared_ptr<const RenderTicket> nextTicket(const JobPiece& piece, std::size_t position);
 
   // --- Frames in flight (render thread, except encode()) ---
   struct FrameInFlight {
@@ -120,7 +122,8 @@ class RenderWorker {
     std::size_t bytes = 0;       // its read-back memory
     double estimate = 0.0;       // its share of pendingSeconds_
   };
-  void submitTicket(const JobPiece& piece, std::size_t position, const lgh::RenderRequest* next);
+  void submitTicket(const JobPiece& piece, std::size_t position,
+                    const std::shared_ptr<const RenderTicket>& next);
   bool completeFrame(bool wait);
   void waitForFrameCapacity(std::size_t bytes);
   void settleFramesInFlight();

@@ -401,6 +401,25 @@ TEST_F(RenderQueueTest, DrainPastTheGraceCancelsTheRest) {
   EXPECT_TRUE(queue.stop(30s));
 }
 
+// The render in progress looks ahead at the next queued ticket (to parse its scene early). When the
+// drain cancels that ticket and its waiter lets go of the job, the look-ahead must not read freed
+// memory (AddressSanitizer, scripts/run-tests --asan, reports it if it does).
+TEST_F(RenderQueueTest, ALookAheadOutlivesTheJobThatADrainCancelled) {
+  RenderQueue& queue = readyQueue(queueOptions(4, 300ms));
+  // While the first job renders, two more queue up: the second renders looking ahead at the third.
+  const auto first = queue.submit(renders(1), "first", farDeadline());
+  ASSERT_TRUE(waitUntil([&] { return first->tickets[0]->started().has_value(); }));
+  const auto rendering = queue.submit(renders(1), "rendering", farDeadline());
+  std::shared_ptr<RenderJob> queued = queue.submit({smallRender(40, 30)}, "queued", farDeadline());
+  ASSERT_TRUE(waitUntil([&] { return rendering->tickets[0]->started().has_value(); }));
+  queue.stopAccepting();
+  EXPECT_FALSE(queue.drain(30ms));
+  EXPECT_EQ(errorOf(*queued->tickets[0], farDeadline()).status(), 503);
+  queued.reset();  // the waiter answered its client and is gone
+  EXPECT_EQ(errorOf(*rendering->tickets[0], farDeadline()).status(), 503);
+  EXPECT_TRUE(queue.stop(30s));
+}
+
 // No working context (an EGL device index no machine here has): the fatal handler runs, and the
 // queue answers 503 with the reason.
 TEST_F(RenderQueueTest, NoContextIsFatalAnd503) {
