@@ -119,7 +119,8 @@ class ThumbnailsWork final : public JobWork {
     const ThumbnailItem& thumbnail = batch_.items[i];
     metrics_.recordThumbnail(outcome.result ? "ok" : "error");
     if (outcome.result) {
-      zip_.addStored(thumbnail.fileName, std::move(outcome.result->encoded));
+      zip_.addStored(thumbnail.fileName, std::move(outcome.result->encoded),
+                     zipCommentNamingGpu(outcome.gpu));
       ++ok_;
       return true;
     }
@@ -188,6 +189,7 @@ class BenchmarkWork final : public JobWork {
     lgh::RenderResult& result = *outcome.result;
     if (i >= static_cast<std::size_t>(warmup_)) {
       runs_.push_back(result.timings);
+      gpus_.push_back(outcome.gpu);
       sceneCacheHits_ += result.sceneCacheHit ? 1 : 0;
     }
     device_ = result.device.toJson();
@@ -229,6 +231,7 @@ class BenchmarkWork final : public JobWork {
             {"height", request_.output.height},
             {"timings", medianTimings().toJson()},
             {"total_ms", std::move(totals)},
+            {"gpus", gpus_},
             {"scene_cache_hits", sceneCacheHits_},
             {"device", device_},
             {"paths", paths_},
@@ -239,6 +242,7 @@ class BenchmarkWork final : public JobWork {
   int warmup_;
   int iterations_;
   std::vector<lgh::TimingTable> runs_;
+  std::vector<int> gpus_;  // the render worker of each timed render
   std::optional<ApiError> error_;
   int sceneCacheHits_ = 0;
   json device_;

@@ -138,7 +138,8 @@ void answerZip(BatchRun& run, httplib::Response& response) {
   for (std::size_t i = 0; i < run.size(); ++i) {
     BatchRun::Outcome outcome = run.wait(i);
     if (outcome.result) {
-      zip.addStored(run.item(i).fileName, std::move(outcome.result->encoded));
+      zip.addStored(run.item(i).fileName, std::move(outcome.result->encoded),
+                    zipCommentNamingGpu(outcome.gpu));
     } else {
       json entry = itemJson(run, i);
       entry.erase("completed");

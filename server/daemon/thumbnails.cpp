@@ -284,4 +284,8 @@ ThumbnailBatch parseThumbnailBatch(const json& body, const std::vector<UploadedF
   return batch;
 }
 
+std::string zipCommentNamingGpu(int gpu) {
+  return gpu < 0 ? std::string() : nlohmann::json{{"gpu", gpu}}.dump();
+}
+
 }  // namespace lghd

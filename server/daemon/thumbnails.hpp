@@ -48,4 +48,8 @@ ThumbnailBatch parseThumbnailBatch(const nlohmann::json& body,
 std::string expandNameTemplate(const std::string& nameTemplate, const std::string& name,
                                const std::string& view, std::size_t index);
 
+// The ZIP file comment of a thumbnail: {"gpu":N}, the render worker (its place in --gpus) that
+// rendered it; empty for none (gpu < 0).
+std::string zipCommentNamingGpu(int gpu);
+
 }  // namespace lghd

@@ -54,7 +54,8 @@ struct ZipWriter::Archive {
 ZipWriter::ZipWriter() : archive_(std::make_unique<Archive>()) {}
 ZipWriter::~ZipWriter() = default;
 
-void ZipWriter::add(const std::string& name, std::vector<std::uint8_t> bytes, bool compress) {
+void ZipWriter::add(const std::string& name, std::vector<std::uint8_t> bytes, bool compress,
+                    const std::string& comment) {
   auto& member =
       members_.emplace_back(std::make_unique<std::vector<std::uint8_t>>(std::move(bytes)));
   zip_source_t* source = zip_source_buffer(archive_->zip, member->data(), member->size(), 0);
@@ -68,14 +69,21 @@ void ZipWriter::add(const std::string& name, std::vector<std::uint8_t> bytes, bo
   if (zip_set_file_compression(archive_->zip, static_cast<zip_uint64_t>(index), method, 0) != 0) {
     fail("setting the compression of " + name, archive_->zip);
   }
+  if (!comment.empty() &&
+      zip_file_set_comment(archive_->zip, static_cast<zip_uint64_t>(index), comment.data(),
+                           static_cast<zip_uint16_t>(std::min<std::size_t>(comment.size(), 0xffff)),
+                           ZIP_FL_ENC_UTF_8) != 0) {
+    fail("setting the comment of " + name, archive_->zip);
+  }
 }
 
-void ZipWriter::addStored(const std::string& name, std::vector<std::uint8_t> bytes) {
-  add(name, std::move(bytes), false);
+void ZipWriter::addStored(const std::string& name, std::vector<std::uint8_t> bytes,
+                          const std::string& comment) {
+  add(name, std::move(bytes), false, comment);
 }
 
 void ZipWriter::addDeflated(const std::string& name, const std::string& text) {
-  add(name, std::vector<std::uint8_t>(text.begin(), text.end()), true);
+  add(name, std::vector<std::uint8_t>(text.begin(), text.end()), true, "");
 }
 
 std::string ZipWriter::finish() {

@@ -16,14 +16,18 @@ class ZipWriter {
   ZipWriter(const ZipWriter&) = delete;
   ZipWriter& operator=(const ZipWriter&) = delete;
 
-  // The bytes are copied; libzip reads them when the archive is finished.
-  void addStored(const std::string& name, std::vector<std::uint8_t> bytes);
+  // The bytes are copied; libzip reads them when the archive is finished. A non-empty comment
+  // becomes the member's file comment in the central directory (`zipinfo -v`, Python's
+  // ZipInfo.comment).
+  void addStored(const std::string& name, std::vector<std::uint8_t> bytes,
+                 const std::string& comment = "");
   void addDeflated(const std::string& name, const std::string& text);
   // Writes the archive and returns its bytes; the writer is spent afterwards.
   std::string finish();
 
  private:
-  void add(const std::string& name, std::vector<std::uint8_t> bytes, bool compress);
+  void add(const std::string& name, std::vector<std::uint8_t> bytes, bool compress,
+           const std::string& comment);
 
   struct Archive;
   std::unique_ptr<Archive> archive_;

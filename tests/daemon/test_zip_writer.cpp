@@ -19,6 +19,7 @@ struct Entry {
   std::vector<std::uint8_t> bytes;
   std::uint16_t method = ZIP_CM_STORE;
   std::uint64_t compressedSize = 0;
+  std::string comment;
 };
 
 // Every entry of the archive in `bytes`, in order. Fails the test when libzip refuses it.
@@ -47,6 +48,10 @@ std::vector<Entry> readArchive(const std::string& bytes) {
       break;
     }
     Entry entry{stat.name, std::vector<std::uint8_t>(stat.size), stat.comp_method, stat.comp_size};
+    zip_uint32_t commentLength = 0;
+    if (const char* comment = zip_file_get_comment(archive, index, &commentLength, 0)) {
+      entry.comment.assign(comment, commentLength);
+    }
     zip_file_t* file = zip_fopen_index(archive, index, 0);
     if (file == nullptr) {
       ADD_FAILURE() << "zip_fopen_index " << i << ": " << zip_strerror(archive);
@@ -117,6 +122,21 @@ TEST(ZipWriter, ImagesStoredTextDeflated) {
   EXPECT_EQ(entries[1].method, ZIP_CM_DEFLATE);
   EXPECT_LT(entries[1].compressedSize, text.size() / 10) << "20 000 equal bytes deflate well";
   EXPECT_EQ(entries[1].bytes, bytesOf(text));
+}
+
+// A member's comment (the GPU that rendered a thumbnail) reads back from the central directory;
+// members without one have none.
+TEST(ZipWriter, MemberCommentsReadBack) {
+  ZipWriter zip;
+  zip.addStored("a.png", randomBytes(100, 4), R"({"gpu":1})");
+  zip.addStored("b.png", randomBytes(100, 5));
+  zip.addDeflated("errors.json", "[]");
+  const std::vector<Entry> entries = readArchive(zip.finish());
+  ASSERT_EQ(entries.size(), 3U);
+  EXPECT_EQ(entries[0].comment, R"({"gpu":1})");
+  EXPECT_EQ(entries[1].comment, "");
+  EXPECT_EQ(entries[2].comment, "");
+  EXPECT_EQ(entries[0].bytes, randomBytes(100, 4));
 }
 
 // The writer copies the bytes it is given: the caller's buffers may go before finish().

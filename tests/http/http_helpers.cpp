@@ -70,8 +70,11 @@ double waitForMetric(httplib::Client& client, const std::string& series, double 
   return value;
 }
 
-std::map<std::string, std::string> unzip(const std::string& bytes) {
-  std::map<std::string, std::string> members;
+namespace {
+
+// Calls `each(archive, index, stat)` for every member of the ZIP archive in `bytes`.
+template <class Each>
+void forEachZipMember(const std::string& bytes, Each each) {
   zip_error_t error;
   zip_error_init(&error);
   zip_source_t* source = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &error);
@@ -80,21 +83,40 @@ std::map<std::string, std::string> unzip(const std::string& bytes) {
     ADD_FAILURE() << "not a ZIP archive: " << zip_error_strerror(&error);
     if (source) zip_source_free(source);
     zip_error_fini(&error);
-    return members;
+    return;
   }
   const zip_int64_t count = zip_get_num_entries(archive, 0);
   for (zip_int64_t i = 0; i < count; ++i) {
     zip_stat_t stat;
     zip_stat_index(archive, static_cast<zip_uint64_t>(i), 0, &stat);
-    std::string content(static_cast<std::size_t>(stat.size), '\0');
-    zip_file_t* file = zip_fopen_index(archive, static_cast<zip_uint64_t>(i), 0);
-    zip_fread(file, content.data(), content.size());
-    zip_fclose(file);
-    members[stat.name] = std::move(content);
+    each(archive, static_cast<zip_uint64_t>(i), stat);
   }
   zip_close(archive);
   zip_error_fini(&error);
+}
+
+}  // namespace
+
+std::map<std::string, std::string> unzip(const std::string& bytes) {
+  std::map<std::string, std::string> members;
+  forEachZipMember(bytes, [&](zip_t* archive, zip_uint64_t index, const zip_stat_t& stat) {
+    std::string content(static_cast<std::size_t>(stat.size), '\0');
+    zip_file_t* file = zip_fopen_index(archive, index, 0);
+    zip_fread(file, content.data(), content.size());
+    zip_fclose(file);
+    members[stat.name] = std::move(content);
+  });
   return members;
+}
+
+std::map<std::string, std::string> zipComments(const std::string& bytes) {
+  std::map<std::string, std::string> comments;
+  forEachZipMember(bytes, [&](zip_t* archive, zip_uint64_t index, const zip_stat_t& stat) {
+    zip_uint32_t length = 0;
+    const char* comment = zip_file_get_comment(archive, index, &length, 0);
+    comments[stat.name] = comment != nullptr ? std::string(comment, length) : std::string();
+  });
+  return comments;
 }
 
 httplib::MultipartFormData filePart(const std::string& relativePath,

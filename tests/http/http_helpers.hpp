@@ -35,6 +35,8 @@ double waitForMetric(httplib::Client& client, const std::string& series, double 
 
 // Member name -> bytes of a ZIP archive in memory.
 std::map<std::string, std::string> unzip(const std::string& bytes);
+// Member name -> file comment (empty for none) of a ZIP archive in memory.
+std::map<std::string, std::string> zipComments(const std::string& bytes);
 
 // A multipart "file" part holding a file of the assimp test models (path relative to it),
 // uploaded under `uploadName` (default: the file's own name).

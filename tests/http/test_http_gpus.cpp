@@ -200,6 +200,36 @@ TEST_F(GpusTest, ASplitBatchComesBackCompleteInOrderAndEqualToOneWorkersImages) 
   EXPECT_EQ(lines[12]["failed"], 2);
 }
 
+// In a ZIP answer each thumbnail names its GPU in its file comment, as an NDJSON line does.
+TEST_F(GpusTest, ZipThumbnailsNameTheirGpuInTheirComments) {
+  const json request = {
+      {"assets",
+       {"BoxTextured-glTF-Binary/BoxTextured.glb", "missing/Nothing.glb",
+        "BoxTextured-glTF/BoxTextured.gltf", "BoxTexcoords-glTF/boxTexcoords.gltf",
+        "BoxTextured-glTF-Embedded/BoxTextured.gltf"}},
+      {"width", 32},
+      {"height", 32},
+      {"name_template", "{index}.png"}};
+  const auto result = postJson(*http, "/v1/thumbnails", request);
+  ASSERT_TRUE(result);
+  ASSERT_EQ(result->status, 200) << result->body;
+  const auto comments = zipComments(result->body);
+  EXPECT_EQ(comments.size(), 5U) << "four thumbnails and errors.json";
+  std::set<int> gpus;
+  for (const auto& [name, comment] : comments) {
+    if (name == "errors.json") {
+      EXPECT_EQ(comment, "");
+      continue;
+    }
+    const json named = json::parse(comment, nullptr, false);
+    ASSERT_TRUE(named.is_object() && named.contains("gpu")) << name << ": " << comment;
+    EXPECT_EQ(named.size(), 1U) << comment;
+    gpus.insert(named["gpu"].get<int>());
+  }
+  EXPECT_GE(gpus.size(), 2U) << "the batch should be split over the workers";
+  for (int gpu : gpus) EXPECT_TRUE(gpu >= 0 && gpu < 3) << gpu;
+}
+
 // Deadlines and a client that goes away, with two workers kept busy.
 TEST(GpusDeadlines, QueueAndRenderDeadlinesAndACancelledBatchStillWork) {
   DaemonProcess daemon({"--gpus", "0,0", "--test-render-delay-ms", "700"});

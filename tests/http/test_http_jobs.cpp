@@ -144,6 +144,9 @@ TEST_F(JobsTest, ThumbnailsJobIsTheZipWithTheErrorsOfBadAssets) {
   const auto members = unzip(zip->body);
   ASSERT_TRUE(members.contains("0.png") && members.contains("2.png") &&
               members.contains("errors.json"));
+  const auto comments = zipComments(zip->body);
+  EXPECT_EQ(comments.at("0.png"), R"({"gpu":0})") << "each thumbnail names its GPU";
+  EXPECT_EQ(comments.at("errors.json"), "");
   const json errors = json::parse(members.at("errors.json"));
   ASSERT_EQ(errors.size(), 1U);
   EXPECT_EQ(errors[0]["error"]["code"], "not_found");
@@ -164,6 +167,7 @@ TEST_F(JobsTest, BenchmarkJobGivesPerPassMedians) {
   const json benchmark = json::parse(result->body);
   expectMatchesSchema(benchmark, "benchmark-result.schema.json");
   EXPECT_EQ(benchmark["total_ms"].size(), 3U);
+  EXPECT_EQ(benchmark["gpus"], json::array({0, 0, 0}));
   EXPECT_EQ(benchmark["scene_cache_hits"], 3);  // the warmup render loaded the scene
   bool hasTotal = false;
   for (const json& row : benchmark["timings"]) hasTotal |= row["pass"] == "total";
