@@ -490,6 +490,47 @@ TEST_F(ShadowTracerTest, ScenesBuildAgainAndTraceManyTimes) {
   EXPECT_EQ(tracer->collectTimings().traceGpuMs, 0.0) << "nothing traced since";
 }
 
+// A grid of `cells` x `cells` quads (two triangles each) over [0, 1]^2 in the x-z plane.
+lgh::Mesh gridMesh(std::uint32_t cells) {
+  std::vector<glm::vec3> positions;
+  std::vector<std::uint32_t> indices;
+  const std::uint32_t side = cells + 1;
+  for (std::uint32_t z = 0; z < side; ++z) {
+    for (std::uint32_t x = 0; x < side; ++x) {
+      positions.emplace_back(static_cast<float>(x) / static_cast<float>(cells), 0.0F,
+                             static_cast<float>(z) / static_cast<float>(cells));
+    }
+  }
+  for (std::uint32_t z = 0; z < cells; ++z) {
+    for (std::uint32_t x = 0; x < cells; ++x) {
+      const std::uint32_t corner = z * side + x;
+      indices.insert(indices.end(), {corner, corner + side, corner + 1, corner + 1, corner + side,
+                                     corner + side + 1});
+    }
+  }
+  return triangles(positions, std::move(indices));
+}
+
+// Small scenes build every structure in one buffer and one submission; a scene whose bottom
+// levels reach 8 MB builds them apart and compacts them. Both trace alike: the box scene with a
+// 250,000-triangle grid far out of the rays' way shadows exactly as the box scene does.
+TEST_F(ShadowTracerTest, ALargeCompactedSceneTracesAsTheSmallOne) {
+  lgh::Scene large = boxScene();
+  large.name = "box and a far grid";
+  large.meshes.push_back(gridMesh(354));
+  large.instances.push_back(
+      {.mesh = 2, .world = glm::translate(glm::mat4(1.0F), {1000.0F, 0.0F, 1000.0F})});
+  const auto built = tracer->buildScene(large);
+  EXPECT_EQ(built->triangleCount(), box->triangleCount() + 2U * 354U * 354U);
+  EXPECT_GT(built->gpuBytes(), std::size_t{8} << 20) << "the compacted path is taken";
+  Batch batch = groundGrid(32, 32, 2);
+  for (std::size_t p = 0; p < batch.shape.pixels(); ++p) {
+    batch.target(p, 0) = {kPointLight, 1.0F};
+    batch.target(p, 1) = {1.0F, 1.0F, 0.0F, 0.0F};
+  }
+  EXPECT_EQ(trace(anyPath(), *built, batch), trace(anyPath(), *box, batch));
+}
+
 TEST(VulkanErrors, FailedCallsBecomeInternalErrorsNamingTheResult) {
   try {
     lgh::vk::translateVulkanErrors(

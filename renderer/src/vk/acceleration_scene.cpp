@@ -6,7 +6,9 @@
 #include "core/stopwatch.hpp"
 #include "scene/scene.hpp"
 #include "vk/bottom_levels.hpp"
+#include "vk/one_time_commands.hpp"
 #include "vk/scene_geometry.hpp"
+#include "vk/timestamp_queries.hpp"
 #include "vk/tlas_instances.hpp"
 #include "vk/top_level.hpp"
 #include "vk/vulkan_device.hpp"
@@ -24,17 +26,67 @@ std::vector<std::optional<::vk::DeviceAddress>> meshAddresses(const BottomLevels
   return addresses;
 }
 
+// A large scene: compacted bottom levels (two submissions), then the top level (a third).
+std::pair<BottomLevels, AccelerationStructure> buildCompacted(const VulkanDevice& device,
+                                                              const Scene& scene,
+                                                              BottomLevelBuilds& bottomBuilds,
+                                                              double& buildGpuMs) {
+  BottomLevels bottom = bottomBuilds.buildCompacted();
+  const auto instances = tlasInstances(scene, meshAddresses(bottom));
+  TopLevelBuild topBuild(device, static_cast<std::uint32_t>(instances.size()));
+  double topGpuMs = 0.0;
+  AccelerationStructure top = topBuild.build(instances, topGpuMs);
+  buildGpuMs = bottom.buildGpuMs + topGpuMs;
+  return {std::move(bottom), std::move(top)};
+}
+
+// A small scene: every structure in one buffer, built in one submission.
+std::pair<BottomLevels, AccelerationStructure> buildTogether(const VulkanDevice& device,
+                                                             const Scene& scene,
+                                                             BottomLevelBuilds& bottomBuilds,
+                                                             double& buildGpuMs) {
+  // Sized for every instance: those of meshes without triangles are left out of the build.
+  TopLevelBuild topBuild(device, static_cast<std::uint32_t>(scene.instances.size()));
+  const ::vk::DeviceSize topOffset =
+      alignUp(bottomBuilds.storageBytes(), AccelerationStructure::kOffsetAlignment);
+  const auto storage = std::make_shared<const DeviceBuffer>(
+      device, accelerationStorage(topOffset + topBuild.storageBytes()));
+  const ::vk::DeviceSize scratchAlignment = device.limits().scratchAlignment;
+  const ::vk::DeviceSize topScratch = alignUp(bottomBuilds.scratchBytes(), scratchAlignment);
+  const DeviceBuffer scratch(device, {.size = topScratch + topBuild.scratchBytes(),
+                                      .usage = ::vk::BufferUsageFlagBits::eStorageBuffer,
+                                      .memory = MemoryKind::DeviceLocal,
+                                      .deviceAddress = true,
+                                      .addressAlignment = scratchAlignment});
+  BottomLevels bottom = bottomBuilds.place(storage, 0);
+  AccelerationStructure top = topBuild.place(storage, topOffset);
+  const auto instances = tlasInstances(scene, meshAddresses(bottom));
+  const TimestampQueries timestamps(device, 1);
+  submitAndWait(device, [&](const ::vk::raii::CommandBuffer& commands) {
+    bottomBuilds.recordUpload(commands);
+    timestamps.begin(commands, 0);
+    bottomBuilds.recordBuilds(commands, scratch.address());
+    topBuild.record(commands, instances, scratch.address() + topScratch);
+    timestamps.end(commands, 0);
+  });
+  buildGpuMs = timestamps.elapsedMs(0);
+  return {std::move(bottom), std::move(top)};
+}
+
 }  // namespace
 
 std::unique_ptr<AccelerationScene> AccelerationScene::build(
     std::shared_ptr<const VulkanDevice> device, const Scene& scene) {
   const Stopwatch wallClock;
   const PackedGeometry geometry = packGeometry(scene);
-  BottomLevels bottom = buildBottomLevels(*device, geometry);
-  TopLevel top = buildTopLevel(*device, tlasInstances(scene, meshAddresses(bottom)));
-  std::unique_ptr<AccelerationScene> built(new AccelerationScene(
-      std::move(device), std::move(bottom.structures), std::move(top.structure)));
-  built->buildGpuMs_ = bottom.buildGpuMs + top.buildGpuMs;
+  BottomLevelBuilds bottomBuilds(*device, geometry);
+  double buildGpuMs = 0.0;
+  auto [bottom, top] = bottomBuilds.worthCompacting()
+                           ? buildCompacted(*device, scene, bottomBuilds, buildGpuMs)
+                           : buildTogether(*device, scene, bottomBuilds, buildGpuMs);
+  std::unique_ptr<AccelerationScene> built(
+      new AccelerationScene(std::move(device), std::move(bottom.structures), std::move(top)));
+  built->buildGpuMs_ = buildGpuMs;
   built->triangleCount_ = geometry.triangleCount;
   spdlog::info(
       "vulkan: scene '{}': {} triangles in {} bottom levels, {} instances: {:.1f} MB, GPU "

@@ -15,9 +15,7 @@ namespace {
 using BuildFlag = ::vk::BuildAccelerationStructureFlagBitsKHR;
 constexpr ::vk::DeviceSize kPositionBytes = sizeof(glm::vec3);
 constexpr ::vk::DeviceSize kIndexBytes = sizeof(std::uint32_t);
-// Compaction halves a bottom level's memory or so, but costs a round trip to the GPU (the
-// compacted sizes are read back before the copies) and a second allocation per mesh: worth it
-// for large scenes, not for the small ones a thumbnail batch loads by the dozen.
+// BottomLevelBuilds::worthCompacting says why.
 constexpr ::vk::DeviceSize kCompactFromBytes = 8ULL << 20;
 
 void memoryBarrier(const ::vk::raii::CommandBuffer& commands, ::vk::PipelineStageFlags from,
@@ -84,21 +82,21 @@ struct MeshBuild {
   std::vector<::vk::AccelerationStructureBuildRangeInfoKHR> ranges;
   ::vk::DeviceSize scratchOffset = 0;
   ::vk::DeviceSize bytes = 0;
-  std::optional<AccelerationStructure> uncompacted;
+  ::vk::AccelerationStructureKHR destination = nullptr;
 
   ::vk::AccelerationStructureBuildGeometryInfoKHR info(::vk::DeviceAddress scratch = 0) const {
     return {.type = ::vk::AccelerationStructureTypeKHR::eBottomLevel,
             .flags = BuildFlag::ePreferFastTrace | BuildFlag::eAllowCompaction,
             .mode = ::vk::BuildAccelerationStructureModeKHR::eBuild,
-            .dstAccelerationStructure = uncompacted ? uncompacted->handle() : nullptr,
+            .dstAccelerationStructure = destination,
             .geometryCount = static_cast<std::uint32_t>(geometries.size()),
             .pGeometries = geometries.data(),
             .scratchData = scratch + scratchOffset};
   }
 };
 
-MeshBuild prepareMesh(const VulkanDevice& device, const PackedMesh& mesh,
-                      const GeometryUpload& upload, ::vk::DeviceSize& scratchBytes) {
+MeshBuild sizeMesh(const VulkanDevice& device, const PackedMesh& mesh, const GeometryUpload& upload,
+                   ::vk::DeviceSize& scratchBytes) {
   MeshBuild build;
   std::vector<std::uint32_t> counts;
   for (const PackedPrimitive& primitive : mesh.primitives) {
@@ -108,16 +106,23 @@ MeshBuild prepareMesh(const VulkanDevice& device, const PackedMesh& mesh,
   }
   const auto sizes = device.device().getAccelerationStructureBuildSizesKHR(
       ::vk::AccelerationStructureBuildTypeKHR::eDevice, build.info(), counts);
-  build.uncompacted.emplace(device, ::vk::AccelerationStructureTypeKHR::eBottomLevel,
-                            sizes.accelerationStructureSize);
   build.bytes = sizes.accelerationStructureSize;
   build.scratchOffset = scratchBytes;
   scratchBytes += alignUp(sizes.buildScratchSize, device.limits().scratchAlignment);
   return build;
 }
 
-void recordBuilds(const ::vk::raii::CommandBuffer& commands, const std::vector<MeshBuild>& builds,
-                  ::vk::DeviceAddress scratch) {
+DeviceBuffer scratchBuffer(const VulkanDevice& device, ::vk::DeviceSize bytes) {
+  return {device,
+          {.size = bytes,
+           .usage = ::vk::BufferUsageFlagBits::eStorageBuffer,
+           .memory = MemoryKind::DeviceLocal,
+           .deviceAddress = true,
+           .addressAlignment = device.limits().scratchAlignment}};
+}
+
+void recordMeshBuilds(const ::vk::raii::CommandBuffer& commands,
+                      const std::vector<MeshBuild>& builds, ::vk::DeviceAddress scratch) {
   std::vector<::vk::AccelerationStructureBuildGeometryInfoKHR> infos;
   std::vector<const ::vk::AccelerationStructureBuildRangeInfoKHR*> ranges;
   infos.reserve(builds.size());
@@ -134,7 +139,7 @@ void recordSizeQuery(const ::vk::raii::CommandBuffer& commands,
                      const std::vector<MeshBuild>& builds, const ::vk::raii::QueryPool& sizes) {
   std::vector<::vk::AccelerationStructureKHR> handles;
   handles.reserve(builds.size());
-  for (const MeshBuild& build : builds) handles.push_back(build.uncompacted->handle());
+  for (const MeshBuild& build : builds) handles.push_back(build.destination);
   commands.resetQueryPool(*sizes, 0, static_cast<std::uint32_t>(handles.size()));
   memoryBarrier(commands, ::vk::PipelineStageFlagBits::eAccelerationStructureBuildKHR,
                 ::vk::AccessFlagBits::eAccelerationStructureWriteKHR,
@@ -164,7 +169,7 @@ std::vector<AccelerationStructure> compact(const VulkanDevice& device,
     timestamps.begin(commands, 1);
     for (std::size_t i = 0; i < builds.size(); ++i) {
       commands.copyAccelerationStructureKHR(
-          {.src = builds[i].uncompacted->handle(),
+          {.src = builds[i].destination,
            .dst = compacted[i].handle(),
            .mode = ::vk::CopyAccelerationStructureModeKHR::eCompact});
     }
@@ -175,43 +180,96 @@ std::vector<AccelerationStructure> compact(const VulkanDevice& device,
 
 }  // namespace
 
-BottomLevels buildBottomLevels(const VulkanDevice& device, const PackedGeometry& geometry) {
-  BottomLevels levels;
-  levels.structureOfMesh.resize(geometry.meshes.size());
-  if (geometry.triangleCount == 0) return levels;
-  const GeometryUpload upload(device, geometry);
+struct BottomLevelBuilds::State {
+  explicit State(const VulkanDevice& owner) : device(owner) {}
+  const VulkanDevice& device;
+  std::optional<GeometryUpload> upload;  // none without triangles
   std::vector<MeshBuild> builds;
+  std::vector<std::optional<std::size_t>> structureOfMesh;
   ::vk::DeviceSize scratchBytes = 0;
+};
+
+BottomLevelBuilds::BottomLevelBuilds(const VulkanDevice& device, const PackedGeometry& geometry)
+    : state_(std::make_unique<State>(device)) {
+  state_->structureOfMesh.resize(geometry.meshes.size());
+  if (geometry.triangleCount == 0) return;
+  const GeometryUpload& upload = state_->upload.emplace(device, geometry);
   for (std::size_t m = 0; m < geometry.meshes.size(); ++m) {
     if (geometry.meshes[m].empty()) continue;
-    levels.structureOfMesh[m] = builds.size();
-    builds.push_back(prepareMesh(device, geometry.meshes[m], upload, scratchBytes));
+    state_->structureOfMesh[m] = state_->builds.size();
+    state_->builds.push_back(sizeMesh(device, geometry.meshes[m], upload, state_->scratchBytes));
   }
-  ::vk::DeviceSize uncompactedBytes = 0;
-  for (const MeshBuild& build : builds) uncompactedBytes += build.bytes;
-  const bool compacted = uncompactedBytes >= kCompactFromBytes;
-  const DeviceBuffer scratch(device, {.size = scratchBytes,
-                                      .usage = ::vk::BufferUsageFlagBits::eStorageBuffer,
-                                      .memory = MemoryKind::DeviceLocal,
-                                      .deviceAddress = true,
-                                      .addressAlignment = device.limits().scratchAlignment});
+}
+
+BottomLevelBuilds::~BottomLevelBuilds() = default;
+
+bool BottomLevelBuilds::worthCompacting() const {
+  ::vk::DeviceSize bytes = 0;
+  for (const MeshBuild& build : state_->builds) bytes += build.bytes;
+  return bytes >= kCompactFromBytes;
+}
+
+::vk::DeviceSize BottomLevelBuilds::storageBytes() const {
+  ::vk::DeviceSize bytes = 0;
+  for (const MeshBuild& build : state_->builds) {
+    bytes += alignUp(build.bytes, AccelerationStructure::kOffsetAlignment);
+  }
+  return bytes;
+}
+
+::vk::DeviceSize BottomLevelBuilds::scratchBytes() const { return state_->scratchBytes; }
+
+BottomLevels BottomLevelBuilds::place(const std::shared_ptr<const DeviceBuffer>& storage,
+                                      ::vk::DeviceSize offset) {
+  BottomLevels levels;
+  levels.structureOfMesh = state_->structureOfMesh;
+  levels.structures.reserve(state_->builds.size());
+  for (MeshBuild& build : state_->builds) {
+    const AccelerationStructure& structure = levels.structures.emplace_back(
+        state_->device, ::vk::AccelerationStructureTypeKHR::eBottomLevel, storage, offset,
+        build.bytes);
+    build.destination = structure.handle();
+    offset += alignUp(build.bytes, AccelerationStructure::kOffsetAlignment);
+  }
+  return levels;
+}
+
+void BottomLevelBuilds::recordUpload(const ::vk::raii::CommandBuffer& commands) const {
+  if (state_->upload) state_->upload->record(commands);
+}
+
+void BottomLevelBuilds::recordBuilds(const ::vk::raii::CommandBuffer& commands,
+                                     ::vk::DeviceAddress scratch) const {
+  if (!state_->builds.empty()) recordMeshBuilds(commands, state_->builds, scratch);
+}
+
+BottomLevels BottomLevelBuilds::buildCompacted() {
+  const VulkanDevice& device = state_->device;
+  std::vector<MeshBuild>& builds = state_->builds;
+  BottomLevels levels;
+  levels.structureOfMesh = state_->structureOfMesh;
+  if (builds.empty()) return levels;
+  std::vector<AccelerationStructure> uncompacted;
+  uncompacted.reserve(builds.size());
+  for (MeshBuild& build : builds) {
+    build.destination =
+        uncompacted
+            .emplace_back(device, ::vk::AccelerationStructureTypeKHR::eBottomLevel, build.bytes)
+            .handle();
+  }
+  const DeviceBuffer scratch = scratchBuffer(device, state_->scratchBytes);
   const ::vk::raii::QueryPool sizeQueries(
       device.device(), ::vk::QueryPoolCreateInfo{
                            .queryType = ::vk::QueryType::eAccelerationStructureCompactedSizeKHR,
                            .queryCount = static_cast<std::uint32_t>(builds.size())});
   const TimestampQueries timestamps(device, 2);
   submitAndWait(device, [&](const ::vk::raii::CommandBuffer& commands) {
-    upload.record(commands);
+    state_->upload->record(commands);
     timestamps.begin(commands, 0);
-    recordBuilds(commands, builds, scratch.address());
-    if (compacted) recordSizeQuery(commands, builds, sizeQueries);
+    recordMeshBuilds(commands, builds, scratch.address());
+    recordSizeQuery(commands, builds, sizeQueries);
     timestamps.end(commands, 0);
   });
-  if (!compacted) {
-    for (MeshBuild& build : builds) levels.structures.push_back(std::move(*build.uncompacted));
-    levels.buildGpuMs = timestamps.elapsedMs(0);
-    return levels;
-  }
   levels.structures = compact(device, builds, sizeQueries, timestamps);
   levels.buildGpuMs = timestamps.elapsedMs(0) + timestamps.elapsedMs(1);
   return levels;

@@ -1,6 +1,8 @@
 #include "vk/top_level.hpp"
 
+#include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 #include "vk/one_time_commands.hpp"
 #include "vk/timestamp_queries.hpp"
@@ -27,48 +29,72 @@ DeviceBuffer uploadInstances(const VulkanDevice& device,
 
 }  // namespace
 
-TopLevel buildTopLevel(const VulkanDevice& device,
-                       const std::vector<::vk::AccelerationStructureInstanceKHR>& instances) {
-  const DeviceBuffer instanceBuffer = uploadInstances(device, instances);
-  const ::vk::AccelerationStructureGeometryKHR geometry{
-      .geometryType = ::vk::GeometryTypeKHR::eInstances,
-      .geometry = ::vk::AccelerationStructureGeometryInstancesDataKHR{
-          .arrayOfPointers = VK_FALSE, .data = instanceBuffer.address()}};
-  ::vk::AccelerationStructureBuildGeometryInfoKHR info{
-      .type = ::vk::AccelerationStructureTypeKHR::eTopLevel,
-      .flags = ::vk::BuildAccelerationStructureFlagBitsKHR::ePreferFastTrace,
-      .mode = ::vk::BuildAccelerationStructureModeKHR::eBuild,
-      .geometryCount = 1,
-      .pGeometries = &geometry};
-  const auto count = static_cast<std::uint32_t>(instances.size());
-  const auto sizes = device.device().getAccelerationStructureBuildSizesKHR(
-      ::vk::AccelerationStructureBuildTypeKHR::eDevice, info, count);
-  TopLevel top{.structure =
-                   AccelerationStructure(device, ::vk::AccelerationStructureTypeKHR::eTopLevel,
-                                         sizes.accelerationStructureSize)};
-  const DeviceBuffer scratch(device, {.size = sizes.buildScratchSize,
-                                      .usage = ::vk::BufferUsageFlagBits::eStorageBuffer,
-                                      .memory = MemoryKind::DeviceLocal,
-                                      .deviceAddress = true,
-                                      .addressAlignment = device.limits().scratchAlignment});
-  info.dstAccelerationStructure = top.structure.handle();
-  info.scratchData = scratch.address();
-  const ::vk::AccelerationStructureBuildRangeInfoKHR range{.primitiveCount = count};
-  const TimestampQueries timestamps(device, 1);
-  submitAndWait(device, [&](const ::vk::raii::CommandBuffer& commands) {
-    // The bottom levels were built (or compacted) by earlier submissions.
-    commands.pipelineBarrier(
-        ::vk::PipelineStageFlagBits::eAccelerationStructureBuildKHR,
-        ::vk::PipelineStageFlagBits::eAccelerationStructureBuildKHR, {},
-        ::vk::MemoryBarrier{.srcAccessMask = ::vk::AccessFlagBits::eAccelerationStructureWriteKHR,
-                            .dstAccessMask = ::vk::AccessFlagBits::eAccelerationStructureReadKHR},
-        nullptr, nullptr);
+TopLevelBuild::TopLevelBuild(const VulkanDevice& device, std::uint32_t maxInstances)
+    : device_(device),
+      maxInstances_(maxInstances),
+      geometry_{.geometryType = ::vk::GeometryTypeKHR::eInstances,
+                .geometry = ::vk::AccelerationStructureGeometryInstancesDataKHR{.arrayOfPointers =
+                                                                                    VK_FALSE}},
+      sizes_(device.device().getAccelerationStructureBuildSizesKHR(
+          ::vk::AccelerationStructureBuildTypeKHR::eDevice, info(), maxInstances)) {}
+
+::vk::AccelerationStructureBuildGeometryInfoKHR TopLevelBuild::info() const {
+  return {.type = ::vk::AccelerationStructureTypeKHR::eTopLevel,
+          .flags = ::vk::BuildAccelerationStructureFlagBitsKHR::ePreferFastTrace,
+          .mode = ::vk::BuildAccelerationStructureModeKHR::eBuild,
+          .dstAccelerationStructure = destination_,
+          .geometryCount = 1,
+          .pGeometries = &geometry_};
+}
+
+AccelerationStructure TopLevelBuild::build(
+    const std::vector<::vk::AccelerationStructureInstanceKHR>& instances, double& buildGpuMs) {
+  const auto storage = std::make_shared<const DeviceBuffer>(
+      device_, accelerationStorage(std::max<::vk::DeviceSize>(storageBytes(), 1)));
+  AccelerationStructure structure = place(storage, 0);
+  const DeviceBuffer scratch(device_, {.size = scratchBytes(),
+                                       .usage = ::vk::BufferUsageFlagBits::eStorageBuffer,
+                                       .memory = MemoryKind::DeviceLocal,
+                                       .deviceAddress = true,
+                                       .addressAlignment = device_.limits().scratchAlignment});
+  const TimestampQueries timestamps(device_, 1);
+  submitAndWait(device_, [&](const ::vk::raii::CommandBuffer& commands) {
     timestamps.begin(commands, 0);
-    commands.buildAccelerationStructuresKHR(info, &range);
+    record(commands, instances, scratch.address());
     timestamps.end(commands, 0);
   });
-  top.buildGpuMs = timestamps.elapsedMs(0);
-  return top;
+  buildGpuMs = timestamps.elapsedMs(0);
+  return structure;
+}
+
+AccelerationStructure TopLevelBuild::place(const std::shared_ptr<const DeviceBuffer>& storage,
+                                           ::vk::DeviceSize offset) {
+  AccelerationStructure structure(device_, ::vk::AccelerationStructureTypeKHR::eTopLevel, storage,
+                                  offset, storageBytes());
+  destination_ = structure.handle();
+  return structure;
+}
+
+void TopLevelBuild::record(const ::vk::raii::CommandBuffer& commands,
+                           const std::vector<::vk::AccelerationStructureInstanceKHR>& instances,
+                           ::vk::DeviceAddress scratch) {
+  if (instances.size() > maxInstances_) {
+    throw std::logic_error("TopLevelBuild: more instances than it was sized for");
+  }
+  instances_.emplace(uploadInstances(device_, instances));
+  geometry_.geometry.instances.data = instances_->address();
+  ::vk::AccelerationStructureBuildGeometryInfoKHR build = info();
+  build.scratchData = scratch;
+  const ::vk::AccelerationStructureBuildRangeInfoKHR range{
+      .primitiveCount = static_cast<std::uint32_t>(instances.size())};
+  // The bottom levels are built by the commands before these (or by earlier submissions).
+  commands.pipelineBarrier(
+      ::vk::PipelineStageFlagBits::eAccelerationStructureBuildKHR,
+      ::vk::PipelineStageFlagBits::eAccelerationStructureBuildKHR, {},
+      ::vk::MemoryBarrier{.srcAccessMask = ::vk::AccessFlagBits::eAccelerationStructureWriteKHR,
+                          .dstAccessMask = ::vk::AccessFlagBits::eAccelerationStructureReadKHR},
+      nullptr, nullptr);
+  commands.buildAccelerationStructuresKHR(build, &range);
 }
 
 }  // namespace lgh::vk
