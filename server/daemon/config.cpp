@@ -1,5 +1,7 @@
 #include "config.hpp"
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -162,6 +164,14 @@ void addRenderFlags(CLI::App& app, DaemonConfig& config, RawFlags& raw) {
                  "request, not lghd; or in lghd's own process (off)")
       ->envname("LGHD_SCENE_WORKER")
       ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--scene-parsers", config.sceneParsers,
+                 "scene parser worker processes per render worker: the scenes it draws next "
+                 "parse side by side (each process has --scene-worker-memory-mb); 0: a quarter "
+                 "of the hardware threads, at least 1 and at most 4")
+      ->envname("LGHD_SCENE_PARSERS")
+      ->check(CLI::Range(0, 64))
       ->capture_default_str()
       ->group(group);
   app.add_option("--test-scene-worker-crash-marker", config.testSceneWorkerCrashMarker,
@@ -367,6 +377,10 @@ int OutputOptions::encoderCount() const {
   return encodeThreads > 0 ? encodeThreads : lgh::TaskPool::hardwareThreads();
 }
 
+int DaemonConfig::sceneParserCount() const {
+  return sceneParsers > 0 ? sceneParsers : std::clamp(lgh::TaskPool::hardwareThreads() / 4, 1, 4);
+}
+
 std::size_t OutputOptions::frameLimit() const {
   return static_cast<std::size_t>(framesInFlight > 0 ? framesInFlight : 2 * encoderCount());
 }
@@ -386,6 +400,7 @@ lgh::RendererOptions DaemonConfig::rendererOptions() const {
     }
     options.sceneWorker.memoryBytes = sceneWorkerMemoryMb << 20;
     options.sceneWorker.timeoutSeconds = sceneWorkerTimeoutSeconds;
+    options.sceneWorker.processes = static_cast<std::size_t>(sceneParserCount());
   }
   return options;
 }

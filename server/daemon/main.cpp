@@ -60,6 +60,7 @@ nlohmann::json startupFields(const DaemonConfig& config, int port) {
           {"gpus", config.gpuList()},
           {"queue_depth", config.queueDepth},
           {"encode_threads", config.output.encoderCount()},
+          {"scene_parsers", config.sceneWorker ? config.sceneParserCount() : 0},
           {"frames_in_flight", config.output.frameLimit()},
           {"deadline_ms", config.deadline.count()},
           {"auth", !config.authToken.empty()}};

@@ -1,5 +1,6 @@
 #include "render_worker.hpp"
 
+#include <algorithm>
 #include <numeric>
 
 #include <fmt/format.h>
@@ -309,13 +310,34 @@ void RenderWorker::forget(double estimateSeconds) {
   pendingSeconds_ -= estimateSeconds;
 }
 
-std::shared_ptr<const RenderTicket> RenderWorker::nextTicket(const JobPiece& piece,
-                                                             std::size_t position) {
-  if (position + 1 < piece.tickets.size()) return piece.job->tickets[piece.tickets[position + 1]];
+RenderWorker::LookAhead RenderWorker::nextTickets(const JobPiece& piece, std::size_t position,
+                                                  std::size_t count) {
+  LookAhead next;
+  for (std::size_t i = position + 1; i < piece.tickets.size() && next.size() < count; ++i) {
+    next.push_back(piece.job->tickets[piece.tickets[i]]);
+  }
   std::lock_guard lock(mutex_);
-  if (pieces_.empty()) return nullptr;
-  const JobPiece& next = pieces_.front();
-  return next.job->tickets[next.tickets.front()];
+  for (const JobPiece& queued : pieces_) {
+    for (const std::size_t index : queued.tickets) {
+      if (next.size() >= count) return next;
+      next.push_back(queued.job->tickets[index]);
+    }
+  }
+  return next;
+}
+
+// Each ticket is hinted once, when it enters the look-ahead window: the window moves on by about
+// one ticket per render, and a hint costs a cache key (an upload's is a hash of its bytes).
+void RenderWorker::prefetch(const LookAhead& next) {
+  std::vector<const RenderTicket*> window;
+  window.reserve(next.size());
+  for (const std::shared_ptr<const RenderTicket>& ticket : next) {
+    window.push_back(ticket.get());
+    if (std::find(hinted_.begin(), hinted_.end(), ticket.get()) == hinted_.end()) {
+      renderer_->prefetch(ticket->request());
+    }
+  }
+  hinted_ = std::move(window);
 }
 
 void RenderWorker::runPiece(const JobPiece& piece) {
@@ -338,7 +360,7 @@ void RenderWorker::runPiece(const JobPiece& piece) {
       metrics_.recordRender("skipped", options_.index);
       continue;
     }
-    submitTicket(piece, position, nextTicket(piece, position));
+    submitTicket(piece, position, nextTickets(piece, position, renderer_->prefetchDepth()));
     if (!renderer_) {  // recovery failed: this worker is out
       failJob(job, unavailable("no working GL context on GPU " + std::to_string(options_.index)));
       for (std::size_t rest = position + 1; rest < piece.tickets.size(); ++rest) {
@@ -354,7 +376,7 @@ void RenderWorker::runPiece(const JobPiece& piece) {
 // --- Frames in flight ---------------------------------------------------------------------------
 
 void RenderWorker::submitTicket(const JobPiece& piece, std::size_t position,
-                                const std::shared_ptr<const RenderTicket>& next) {
+                                const LookAhead& next) {
   const std::shared_ptr<RenderTicket>& ticket = piece.job->tickets[piece.tickets[position]];
   const double estimate = piece.estimates[position];
   const std::size_t bytes = frameBytes(ticket->request());
@@ -372,8 +394,8 @@ void RenderWorker::submitTicket(const JobPiece& piece, std::size_t position,
   try {
     const WatchdogScope watched(watchdog_.get(), piece.job->startDeadline + options_.watchdog);
     if (options_.testRenderDelay.count() > 0) std::this_thread::sleep_for(options_.testRenderDelay);
-    // The next scene is parsed while this one uploads and renders.
-    if (next) renderer_->prefetch(next->request());
+    // The next scenes are parsed while this one uploads and renders.
+    prefetch(next);
     renderer_->submit(ticket->request());
     submitted_.push_back({piece.job, ticket, start, start, bytes, estimate});
     std::lock_guard lock(mutex_);

@@ -109,9 +109,12 @@ class RenderWorker {
   void runPiece(const JobPiece& piece);
   void finishPiece();
   void forget(double estimateSeconds);
-  // The ticket after `position` (in this piece or the next queued one), owned: a shutdown or a
-  // hang may drop the queued piece, and its job with it, while the current frame renders.
-  std::shared_ptr<const RenderTicket> nextTicket(const JobPiece& piece, std::size_t position);
+  // Up to `count` tickets after `position` (in this piece, then the queued ones), owned: a
+  // shutdown or a hang may drop a queued piece, and its job with it, while the current frame
+  // renders.
+  using LookAhead = std::vector<std::shared_ptr<const RenderTicket>>;
+  LookAhead nextTickets(const JobPiece& piece, std::size_t position, std::size_t count);
+  void prefetch(const LookAhead& next);
 
   // --- Frames in flight (render thread, except encode()) ---
   struct FrameInFlight {
@@ -122,8 +125,7 @@ class RenderWorker {
     std::size_t bytes = 0;       // its read-back memory
     double estimate = 0.0;       // its share of pendingSeconds_
   };
-  void submitTicket(const JobPiece& piece, std::size_t position,
-                    const std::shared_ptr<const RenderTicket>& next);
+  void submitTicket(const JobPiece& piece, std::size_t position, const LookAhead& next);
   bool completeFrame(bool wait);
   void waitForFrameCapacity(std::size_t bytes);
   void settleFramesInFlight();
@@ -138,6 +140,7 @@ class RenderWorker {
   lgh::TaskPool& encoders_;
   Hooks hooks_;
   std::unique_ptr<lgh::Renderer> renderer_;  // made, used and destroyed on the render thread
+  std::vector<const RenderTicket*> hinted_;  // the last look-ahead window (render thread)
 
   mutable std::mutex mutex_;
   std::condition_variable workCondition_;

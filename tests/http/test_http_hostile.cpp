@@ -287,6 +287,38 @@ TEST(SceneWorker, AParserCrashCostsOneRequestNotTheDaemon) {
   EXPECT_NE(crashing.log().find("scene worker: crashed parsing Cameras.gltf"), std::string::npos);
 }
 
+// In a batch, scenes parse ahead on prefetch threads: a parser that crashes there is replaced
+// from one of those short-lived threads, and the replacement must outlive it (a worker dies with
+// the thread that started it unless started from one that lives on). Only the crashing asset
+// fails; so does nothing else with three parsers side by side.
+TEST(SceneWorker, AParserCrashInABatchCostsOnlyThatThumbnail) {
+  for (const char* parsers : {"1", "3"}) {
+    DaemonProcess crashing({"--test-scene-worker-crash-marker", "Cameras", "--scene-parsers",
+                            parsers, "--scene-cache-mb", "0"});
+    auto http = crashing.client(std::chrono::seconds(120));
+    const json batch = {
+        {"assets",
+         {"BoxTextured-glTF-Binary/BoxTextured.glb", "cameras/Cameras.gltf",
+          "BoxTextured-glTF/BoxTextured.gltf", "BoxTexcoords-glTF/boxTexcoords.gltf",
+          "BoxTextured-glTF-Embedded/BoxTextured.gltf",
+          "2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
+          "BoxTextured-glTF-Binary/BoxTextured.glb"}},
+        {"width", 16},
+        {"height", 16},
+        {"name_template", "{index}.png"}};
+    const auto result = postJson(*http, "/v1/thumbnails", batch);
+    ASSERT_TRUE(result);
+    ASSERT_EQ(result->status, 200) << result->body.substr(0, 300);
+    const auto members = unzip(result->body);
+    EXPECT_EQ(result->get_header_value("X-Lgh-Thumbnails-Failed"), "1")
+        << parsers
+        << " parsers: " << (members.contains("errors.json") ? members.at("errors.json") : "");
+    EXPECT_EQ(result->get_header_value("X-Lgh-Thumbnails-Ok"), "6") << parsers << " parsers";
+    EXPECT_FALSE(members.contains("1.png"));
+    EXPECT_FALSE(crashing.exited());
+  }
+}
+
 TEST(SceneWorker, AParseRunningPastItsTimeIs413AndTheNextLoadWorks) {
   DaemonProcess slow({"--scene-worker-timeout-seconds", "0.1"});
   auto http = slow.client(std::chrono::seconds(120));

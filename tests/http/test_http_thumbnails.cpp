@@ -2,8 +2,11 @@
 // templates, and bad assets that must not sink the batch.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <set>
 #include <sstream>
+
+#include <fmt/format.h>
 
 #include "daemon_process.hpp"
 #include "http_helpers.hpp"
@@ -209,6 +212,53 @@ TEST_F(ThumbnailsTest, BatchLevelErrors) {
   const json unknown = {{"assets", {"a.glb"}}, {"colour", "red"}};
   expectError(postJson(*http, "/v1/thumbnails", unknown), 400, "bad_request");
   EXPECT_EQ(http->Get("/healthz")->status, 200);
+}
+
+// With several scene parser processes the assets a batch draws next parse side by side: more than
+// one parser starts, a broken asset still fails only its own thumbnail, and every image equals
+// what one parser gives.
+TEST(ThumbnailsSceneParsers, ABatchParsesOnSeveralProcessesAndMatchesOneParser) {
+  const json request = {
+      {"assets",
+       {"BoxTextured-glTF-Binary/BoxTextured.glb",
+        "2CylinderEngine-glTF-Binary/2CylinderEngine.glb", "BoxTextured-glTF/BoxTextured.gltf",
+        "IndexOutOfRange/IndexOutOfRange.gltf", "BoxTexcoords-glTF/boxTexcoords.gltf",
+        "BoxTextured-glTF-Embedded/BoxTextured.gltf"}},
+      {"width", 32},
+      {"height", 32},
+      {"name_template", "{index}.png"}};
+  std::map<std::string, std::string> images[2];
+  for (const int parsers : {3, 1}) {
+    const DaemonProcess daemon(
+        {"--scene-parsers", std::to_string(parsers), "--scene-cache-mb", "0"});
+    auto http = daemon.client(std::chrono::seconds(120));
+    const auto result = postJson(*http, "/v1/thumbnails", request);
+    ASSERT_TRUE(result);
+    ASSERT_EQ(result->status, 200) << result->body.substr(0, 300);
+    EXPECT_EQ(result->get_header_value("X-Lgh-Thumbnails-Failed"), "1") << "IndexOutOfRange";
+    images[parsers == 3 ? 0 : 1] = unzip(result->body);
+    const std::string log = daemon.log();
+    EXPECT_NE(log.find(fmt::format("\"scene_parsers\":{}", parsers)), std::string::npos);
+    std::size_t started = 0;
+    for (std::size_t at = log.find("scene worker: pid"); at != std::string::npos;
+         at = log.find("scene worker: pid", at + 1)) {
+      ++started;
+    }
+    if (parsers == 3) {
+      EXPECT_GE(started, 2U) << log;
+      EXPECT_LE(started, 3U) << log;
+    } else {
+      EXPECT_EQ(started, 1U) << log;
+    }
+  }
+  ASSERT_EQ(images[0].size(), 6U) << "five thumbnails and errors.json";
+  ASSERT_EQ(images[1].size(), images[0].size());
+  for (const auto& [name, bytes] : images[0]) {
+    if (name == "errors.json") continue;
+    ASSERT_TRUE(images[1].contains(name)) << name;
+    EXPECT_EQ(decodeBody(bytes, name).pixels8, decodeBody(images[1].at(name), name).pixels8)
+        << name;
+  }
 }
 
 }  // namespace

@@ -54,6 +54,9 @@ class Renderer {
   // A hint that `request` comes next: its scene is parsed on a thread of its own meanwhile,
   // unless it is cached (the GL upload waits for the submit). Errors surface from that submit.
   void prefetch(const RenderRequest& request);
+  // How many of the requests to come are worth a prefetch() hint: as many as scenes parse side
+  // by side (RendererOptions::sceneWorker.processes, 1 without a parser worker).
+  std::size_t prefetchDepth() const;
 
   // Read-back memory: buffers held by frames (pending, or finished and not yet released) and all
   // buffers the renderer keeps. Safe on any thread.

@@ -21,6 +21,9 @@ struct SceneWorkerOptions {
   std::vector<std::string> arguments;
   std::size_t memoryBytes = 4ULL << 30;  // its data size limit (RLIMIT_DATA): past it, 413
   double timeoutSeconds = 120.0;         // one load; past it the worker is killed: 413
+  // Parser processes at most (each with the memory limit above): the scenes a render thread
+  // draws next parse side by side. More start only while every running one is busy.
+  std::size_t processes = 1;
 };
 
 template <>

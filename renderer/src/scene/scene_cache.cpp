@@ -12,7 +12,7 @@
 #include "scene/atrium_scene.hpp"
 #include "scene/demo_scene.hpp"
 #include "scene/gltf/gltf_loader.hpp"
-#include "scene/worker/scene_worker.hpp"
+#include "scene/worker/scene_worker_pool.hpp"
 
 namespace lgh {
 namespace {
@@ -30,7 +30,7 @@ std::uint64_t fnv1a(const std::vector<std::uint8_t>& bytes) {
 
 SceneCache::SceneCache(const RendererOptions& options) : options_(options) {
   if (!options_.sceneWorker.executable.empty()) {
-    worker_ = std::make_unique<worker::SceneWorker>(options_.sceneWorker);
+    parsers_ = std::make_unique<worker::SceneWorkerPool>(options_.sceneWorker);
   }
   GLfloat anisotropy = 1.0F;
   glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &anisotropy);
@@ -100,7 +100,7 @@ namespace {
 
 // Built-in scenes are made here; assets are parsed by the scene parser worker when there is one
 // (untrusted bytes never parsed in this process), else here.
-Scene loadScene(const RendererOptions& rendererOptions, worker::SceneWorker* worker,
+Scene loadScene(const RendererOptions& rendererOptions, worker::SceneWorkerPool* parsers,
                 const SceneSource& source, const SceneLoadOptions& options) {
   if (source.kind == SceneSource::Kind::Builtin) {
     return source.builtin == BuiltinScene::Atrium ? makeAtriumScene() : makeDemoScene();
@@ -109,19 +109,25 @@ Scene loadScene(const RendererOptions& rendererOptions, worker::SceneWorker* wor
   limits.maxTriangles = rendererOptions.maxTriangles;
   limits.maxTextureSize = rendererOptions.maxTextureSize;
   limits.maxTextureBytes = rendererOptions.maxTextureBytes;
-  if (worker != nullptr) return worker->load({source, rendererOptions.assetRoot, limits, options});
+  if (parsers != nullptr) {
+    return parsers->load({source, rendererOptions.assetRoot, limits, options});
+  }
   return loadSceneSource(source, rendererOptions.assetRoot, limits, options);
 }
 
 }  // namespace
 
 SceneCache::Parsed SceneCache::parse(const RendererOptions& rendererOptions,
-                                     worker::SceneWorker* worker, const SceneSource& source,
+                                     worker::SceneWorkerPool* parsers, const SceneSource& source,
                                      const SceneLoadOptions& options) {
   const Stopwatch timer;
-  Parsed parsed{loadScene(rendererOptions, worker, source, options), 0.0};
+  Parsed parsed{loadScene(rendererOptions, parsers, source, options), 0.0};
   parsed.loadMs = timer.elapsedMs();
   return parsed;
+}
+
+std::size_t SceneCache::maxPrefetches() const {
+  return (parsers_ ? parsers_->maxProcesses() : 1) + 1;
 }
 
 void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& options) {
@@ -137,17 +143,17 @@ void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& opt
   }
   // When full, finished parses nobody asked for yet make room (their request was cancelled, or
   // comes later than the hints after it).
-  if (prefetches_.size() >= kMaxPrefetches) {
+  if (prefetches_.size() >= maxPrefetches()) {
     std::erase_if(prefetches_, [](const auto& entry) {
       return entry.second.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
     });
   }
-  if (prefetches_.size() >= kMaxPrefetches) return;
+  if (prefetches_.size() >= maxPrefetches()) return;
   try {
     prefetches_.emplace(
         key, std::async(std::launch::async,
-                        [rendererOptions = options_, worker = worker_.get(), source, options] {
-                          return parse(rendererOptions, worker, source, options);
+                        [rendererOptions = options_, parsers = parsers_.get(), source, options] {
+                          return parse(rendererOptions, parsers, source, options);
                         }));
   } catch (const std::system_error& error) {
     spdlog::warn("scene cache: no thread for a prefetch ({}); the scene is parsed when drawn",
@@ -176,7 +182,7 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
     parsed = parsing.get();  // rethrows the parse's error
     lookup.prefetched = true;
   } else {
-    parsed = parse(options_, worker_.get(), source, options);
+    parsed = parse(options_, parsers_.get(), source, options);
   }
   entry->scene = std::move(parsed.scene);
   lookup.loadMs = parsed.loadMs;

@@ -21,7 +21,7 @@
 namespace lgh {
 
 namespace worker {
-class SceneWorker;
+class SceneWorkerPool;
 }
 
 // The acceleration structures of a cached scene, built by the first shadowed frame that draws it
@@ -75,10 +75,11 @@ class SceneCache {
 
   // Starts parsing `source` on a thread of its own unless it is cached or already being parsed;
   // the get() that asks for it then waits for that parse instead of parsing (its errors come
-  // from that get()). The upload stays for get(), on the GL thread. At most kMaxPrefetches parses
-  // run at once; a hint beyond that is dropped.
+  // from that get()). The upload stays for get(), on the GL thread. At most maxPrefetches()
+  // parses run at once; a hint beyond that is dropped.
   void prefetch(const SceneSource& source, const SceneLoadOptions& options = {});
-  static constexpr std::size_t kMaxPrefetches = 2;
+  // One more than the parser processes: one parse per process, and the next one queued.
+  std::size_t maxPrefetches() const;
 
   // Content key of a source ("" when it cannot be keyed; then it is never cached).
   std::string keyFor(const SceneSource& source, const SceneLoadOptions& options = {}) const;
@@ -89,13 +90,13 @@ class SceneCache {
     double loadMs = 0.0;
   };
   // In the scene parser worker when there is one (untrusted bytes never parsed here).
-  static Parsed parse(const RendererOptions& rendererOptions, worker::SceneWorker* worker,
+  static Parsed parse(const RendererOptions& rendererOptions, worker::SceneWorkerPool* parsers,
                       const SceneSource& source, const SceneLoadOptions& options);
   std::string sourceKey(const SceneSource& source) const;
   void evictOverBudget();
   RendererOptions options_;
-  std::unique_ptr<worker::SceneWorker> worker_;
-  // By key. Declared after worker_ so that its parses (which may use the worker) end first.
+  std::unique_ptr<worker::SceneWorkerPool> parsers_;
+  // By key. Declared after parsers_ so that its parses (which may use them) end first.
   std::map<std::string, std::future<Parsed>> prefetches_;
   float maxAnisotropy_ = 1.0F;
   struct Slot {

@@ -15,9 +15,14 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <condition_variable>
 #include <csignal>
 #include <cstring>
+#include <deque>
+#include <functional>
+#include <future>
 #include <limits>
+#include <mutex>
 #include <new>
 #include <span>
 #include <thread>
@@ -174,6 +179,52 @@ ReadResult receiveMessage(int socket, const Clock::time_point* deadline, std::ui
   return message.mapped() ? ReadResult::Done : ReadResult::Malformed;
 }
 
+// The worker asks for SIGKILL when its parent dies (PR_SET_PDEATHSIG), and Linux counts as its
+// parent the *thread* that started it: a worker started from a scene prefetch's thread would be
+// killed when that thread ends. Every worker is therefore started from this one thread, which
+// lives as long as the process (it is never destroyed, so no exit handler waits for it).
+class SpawnThread {
+ public:
+  static SpawnThread& instance() {
+    static SpawnThread* const thread = new SpawnThread();
+    return *thread;
+  }
+
+  // Runs `spawn` on the thread and returns its result (posix_spawn's error number).
+  int run(std::function<int()> spawn) {
+    auto task = std::make_shared<std::packaged_task<int()>>(std::move(spawn));
+    std::future<int> result = task->get_future();
+    {
+      const std::lock_guard lock(mutex_);
+      tasks_.emplace_back([task] { (*task)(); });
+    }
+    posted_.notify_one();
+    return result.get();
+  }
+
+ private:
+  SpawnThread() {
+    std::thread([this] { loop(); }).detach();
+  }
+
+  [[noreturn]] void loop() {
+    for (;;) {
+      std::function<void()> task;
+      {
+        std::unique_lock lock(mutex_);
+        posted_.wait(lock, [this] { return !tasks_.empty(); });
+        task = std::move(tasks_.front());
+        tasks_.pop_front();
+      }
+      task();
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable posted_;
+  std::deque<std::function<void()>> tasks_;
+};
+
 // The worker says it is ready with one byte, once its libraries are loaded.
 constexpr char kReady = 'R';
 constexpr auto kStartupTimeout = std::chrono::seconds(60);
@@ -254,8 +305,9 @@ void SceneWorker::start() {
   for (std::string& argument : argv) pointers.push_back(argument.data());
   pointers.push_back(nullptr);
   pid_t pid = -1;
-  const int failed =
-      ::posix_spawn(&pid, argv.front().c_str(), &actions, nullptr, pointers.data(), environ);
+  const int failed = SpawnThread::instance().run([&] {
+    return ::posix_spawn(&pid, argv.front().c_str(), &actions, nullptr, pointers.data(), environ);
+  });
   posix_spawn_file_actions_destroy(&actions);
   ::close(sockets[1]);
   if (failed != 0) {
@@ -367,7 +419,8 @@ Scene SceneWorker::load(const LoadJob& job) {
 namespace lgh {
 
 int runSceneParserWorker(int fd, const std::string& testCrashMarker) {
-  ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // never outlive the daemon
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // never outlive the daemon (see SpawnThread)
+  if (::getppid() == 1) return 1;      // it died before the request took effect
   if (!worker::sendReady(fd)) return 1;
   for (;;) {
     worker::LoadOutcome outcome = Error(ErrorCode::Internal, "no load happened");

@@ -1,0 +1,47 @@
+// Several scene parser workers (scene_worker.hpp) for one renderer, so that the scenes a render
+// thread will draw next parse side by side, each in a process of its own. The first worker starts
+// with the pool; more start when every running one is busy, up to SceneWorkerOptions::processes.
+// A load takes an idle worker, or waits for one.
+#pragma once
+
+#include <condition_variable>
+#include <cstddef>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "lgh/renderer_options.hpp"
+#include "scene/worker/scene_wire.hpp"
+
+namespace lgh::worker {
+
+class SceneWorker;
+
+class SceneWorkerPool {
+ public:
+  explicit SceneWorkerPool(SceneWorkerOptions options);
+  ~SceneWorkerPool();
+  SceneWorkerPool(const SceneWorkerPool&) = delete;
+  SceneWorkerPool& operator=(const SceneWorkerPool&) = delete;
+
+  // As SceneWorker::load, on whichever worker is free.
+  Scene load(const LoadJob& job);
+
+  std::size_t maxProcesses() const { return maxProcesses_; }
+  // Workers started so far (each restarts its own process after a crash).
+  std::size_t started() const;
+
+ private:
+  SceneWorker& acquire();
+  void release(SceneWorker& worker);
+
+  SceneWorkerOptions options_;
+  std::size_t maxProcesses_;
+  mutable std::mutex mutex_;
+  std::condition_variable freed_;
+  std::vector<std::unique_ptr<SceneWorker>> workers_;
+  std::vector<SceneWorker*> idle_;
+  std::size_t starting_ = 0;  // workers being started outside the lock
+};
+
+}  // namespace lgh::worker
