@@ -45,6 +45,7 @@ struct Rendered {
 // `count` renders of the small demo from `count` clients at once.
 std::vector<Rendered> concurrentRenders(const DaemonProcess& daemon, int count) {
   std::vector<std::future<Rendered>> futures;
+  futures.reserve(static_cast<std::size_t>(count));
   for (int i = 0; i < count; ++i) {
     futures.push_back(std::async(std::launch::async, [&daemon] {
       auto http = daemon.client();
@@ -54,6 +55,7 @@ std::vector<Rendered> concurrentRenders(const DaemonProcess& daemon, int count) 
     }));
   }
   std::vector<Rendered> results;
+  results.reserve(futures.size());
   for (auto& future : futures) results.push_back(future.get());
   return results;
 }

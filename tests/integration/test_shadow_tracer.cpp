@@ -521,7 +521,7 @@ TEST_F(ShadowTracerTest, ALargeCompactedSceneTracesAsTheSmallOne) {
   large.instances.push_back(
       {.mesh = 2, .world = glm::translate(glm::mat4(1.0F), {1000.0F, 0.0F, 1000.0F})});
   const auto built = tracer->buildScene(large);
-  EXPECT_EQ(built->triangleCount(), box->triangleCount() + 2U * 354U * 354U);
+  EXPECT_EQ(built->triangleCount(), box->triangleCount() + std::size_t{2} * 354 * 354);
   EXPECT_GT(built->gpuBytes(), std::size_t{8} << 20) << "the compacted path is taken";
   Batch batch = groundGrid(32, 32, 2);
   for (std::size_t p = 0; p < batch.shape.pixels(); ++p) {

@@ -60,7 +60,7 @@ std::string uploadKey(const SceneLoadOptions& options) {
 }  // namespace
 
 std::string SceneCache::keyFor(const SceneSource& source, const SceneLoadOptions& options) const {
-  const std::string base = sourceKey(source);
+  std::string base = sourceKey(source);
   if (base.empty()) return base;
   if (source.kind == SceneSource::Kind::Builtin) return base + uploadKey(options);
   return base + optionsKey(options) + uploadKey(options);
