@@ -51,13 +51,10 @@ std::pair<BottomLevels, AccelerationStructure> buildTogether(const VulkanDevice&
       alignUp(bottomBuilds.storageBytes(), AccelerationStructure::kOffsetAlignment);
   const auto storage = std::make_shared<const DeviceBuffer>(
       device, accelerationStorage(topOffset + topBuild.storageBytes()));
-  const ::vk::DeviceSize scratchAlignment = device.limits().scratchAlignment;
-  const ::vk::DeviceSize topScratch = alignUp(bottomBuilds.scratchBytes(), scratchAlignment);
-  const DeviceBuffer scratch(device, {.size = topScratch + topBuild.scratchBytes(),
-                                      .usage = ::vk::BufferUsageFlagBits::eStorageBuffer,
-                                      .memory = MemoryKind::DeviceLocal,
-                                      .deviceAddress = true,
-                                      .addressAlignment = scratchAlignment});
+  const ::vk::DeviceSize topScratch =
+      alignUp(bottomBuilds.scratchBytes(), device.limits().scratchAlignment);
+  const DeviceBuffer scratch(device,
+                             accelerationScratch(device, topScratch + topBuild.scratchBytes()));
   BottomLevels bottom = bottomBuilds.place(storage, 0);
   AccelerationStructure top = topBuild.place(storage, topOffset);
   const auto instances = tlasInstances(scene, meshAddresses(bottom));

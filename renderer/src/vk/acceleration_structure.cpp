@@ -29,6 +29,14 @@ BufferSpec accelerationStorage(::vk::DeviceSize size) {
           .deviceAddress = true};
 }
 
+BufferSpec accelerationScratch(const VulkanDevice& device, ::vk::DeviceSize size) {
+  return {.size = size,
+          .usage = ::vk::BufferUsageFlagBits::eStorageBuffer,
+          .memory = MemoryKind::DeviceLocal,
+          .deviceAddress = true,
+          .addressAlignment = device.limits().scratchAlignment};
+}
+
 AccelerationStructure::AccelerationStructure(const VulkanDevice& device,
                                              ::vk::AccelerationStructureTypeKHR type,
                                              ::vk::DeviceSize size)

@@ -40,5 +40,7 @@ class AccelerationStructure {
 
 // The usage and memory of a buffer that holds acceleration structures.
 BufferSpec accelerationStorage(::vk::DeviceSize size);
+// Scratch memory for acceleration-structure builds, its address aligned as `device` wants.
+BufferSpec accelerationScratch(const VulkanDevice& device, ::vk::DeviceSize size);
 
 }  // namespace lgh::vk

@@ -112,15 +112,6 @@ MeshBuild sizeMesh(const VulkanDevice& device, const PackedMesh& mesh, const Geo
   return build;
 }
 
-DeviceBuffer scratchBuffer(const VulkanDevice& device, ::vk::DeviceSize bytes) {
-  return {device,
-          {.size = bytes,
-           .usage = ::vk::BufferUsageFlagBits::eStorageBuffer,
-           .memory = MemoryKind::DeviceLocal,
-           .deviceAddress = true,
-           .addressAlignment = device.limits().scratchAlignment}};
-}
-
 void recordMeshBuilds(const ::vk::raii::CommandBuffer& commands,
                       const std::vector<MeshBuild>& builds, ::vk::DeviceAddress scratch) {
   std::vector<::vk::AccelerationStructureBuildGeometryInfoKHR> infos;
@@ -257,7 +248,7 @@ BottomLevels BottomLevelBuilds::buildCompacted() {
             .emplace_back(device, ::vk::AccelerationStructureTypeKHR::eBottomLevel, build.bytes)
             .handle();
   }
-  const DeviceBuffer scratch = scratchBuffer(device, state_->scratchBytes);
+  const DeviceBuffer scratch(device, accelerationScratch(device, state_->scratchBytes));
   const ::vk::raii::QueryPool sizeQueries(
       device.device(), ::vk::QueryPoolCreateInfo{
                            .queryType = ::vk::QueryType::eAccelerationStructureCompactedSizeKHR,

@@ -52,11 +52,7 @@ AccelerationStructure TopLevelBuild::build(
   const auto storage = std::make_shared<const DeviceBuffer>(
       device_, accelerationStorage(std::max<::vk::DeviceSize>(storageBytes(), 1)));
   AccelerationStructure structure = place(storage, 0);
-  const DeviceBuffer scratch(device_, {.size = scratchBytes(),
-                                       .usage = ::vk::BufferUsageFlagBits::eStorageBuffer,
-                                       .memory = MemoryKind::DeviceLocal,
-                                       .deviceAddress = true,
-                                       .addressAlignment = device_.limits().scratchAlignment});
+  const DeviceBuffer scratch(device_, accelerationScratch(device_, scratchBytes()));
   const TimestampQueries timestamps(device_, 1);
   submitAndWait(device_, [&](const ::vk::raii::CommandBuffer& commands) {
     timestamps.begin(commands, 0);
