@@ -25,6 +25,12 @@ void writeText(const char* text) {
   (void)written;
 }
 
+void writeBacktrace() {
+  void* frames[kMaxFrames];
+  const int count = backtrace(frames, kMaxFrames);
+  backtrace_symbols_fd(frames, count, STDERR_FILENO);
+}
+
 void onFatalSignal(int signal) {
   writeText("\n");
   writeText(gProgram);
@@ -32,9 +38,7 @@ void onFatalSignal(int signal) {
   const char* name = sigabbrev_np(signal);
   writeText(name != nullptr ? name : "?");
   writeText("; stack (addr2line -f -C -e MODULE OFFSET):\n");
-  void* frames[kMaxFrames];
-  const int count = backtrace(frames, kMaxFrames);
-  backtrace_symbols_fd(frames, count, STDERR_FILENO);
+  writeBacktrace();
   // SA_RESETHAND put the default action back: the process dies of the signal, as before.
   std::raise(signal);
 }
@@ -60,9 +64,7 @@ void writeOwnStack() {
   writeText("thread ");
   writeNumber(static_cast<long>(syscall(SYS_gettid)));
   writeText(":\n");
-  void* frames[kMaxFrames];
-  const int count = backtrace(frames, kMaxFrames);
-  backtrace_symbols_fd(frames, count, STDERR_FILENO);
+  writeBacktrace();
 }
 
 int stackSignal() { return SIGRTMIN + 4; }

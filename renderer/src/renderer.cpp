@@ -173,7 +173,7 @@ void Renderer::prefetch(const RenderRequest& request) {
   impl_->cache.prefetch(request.scene, loadOptionsOf(request));
 }
 
-std::size_t Renderer::prefetchDepth() const { return impl_->cache.maxPrefetches() - 1; }
+std::size_t Renderer::prefetchDepth() const { return impl_->cache.prefetchDepth(); }
 
 std::uint64_t Renderer::Impl::submit(const RenderRequest& request) {
   throwIfLost();

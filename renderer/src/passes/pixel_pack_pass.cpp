@@ -15,11 +15,11 @@ constexpr std::size_t kWordBytes = 4;
 std::size_t wordsFor(std::size_t bytes) { return (bytes + kWordBytes - 1) / kWordBytes; }
 
 // glGetTextureImage into the pack buffer, in the layout's format.
-void copyByDriver(const FrameTargets& targets, OutputPixels pixels, FramePixels::Layout layout,
+void copyByDriver(const FrameTargets& targets, OutputPixels pixels, const FramePixels& frame,
                   GLuint packBuffer) {
   GLenum format = GL_RGBA;
   GLenum type = GL_FLOAT;
-  switch (layout) {
+  switch (frame.layout) {
     case FramePixels::Layout::Rgb8:
       format = GL_RGB_INTEGER;
       type = GL_UNSIGNED_BYTE;
@@ -34,11 +34,10 @@ void copyByDriver(const FrameTargets& targets, OutputPixels pixels, FramePixels:
     case FramePixels::Layout::RgbaFloat:
       break;
   }
-  const FramePixels probe{targets.width, targets.height, layout, nullptr};
   glPixelStorei(GL_PACK_ALIGNMENT, 1);  // rows tightly packed, whatever their length
   glBindBuffer(GL_PIXEL_PACK_BUFFER, packBuffer);
   glGetTextureImage(targets.outputs[static_cast<int>(pixels)].texture.id(), 0, format, type,
-                    static_cast<GLsizei>(probe.size()), nullptr);
+                    static_cast<GLsizei>(frame.size()), nullptr);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
 }
@@ -67,12 +66,12 @@ std::size_t PixelPackPass::bufferBytes(const FramePixels& pixels) {
 
 void PixelPackPass::run(const FrameTargets& targets, OutputPixels pixels,
                         FramePixels::Layout layout, GLuint packBuffer) {
-  const FramePixels probe{targets.width, targets.height, layout, nullptr};
-  if (!probe.isDisplay()) {
-    copyByDriver(targets, pixels, layout, packBuffer);  // the target's own format: a plain copy
+  const FramePixels frame{targets.width, targets.height, layout, nullptr};
+  if (!frame.isDisplay()) {
+    copyByDriver(targets, pixels, frame, packBuffer);  // the target's own format: a plain copy
     return;
   }
-  if (bufferBytes(probe) > maxBlockBytes_) {
+  if (bufferBytes(frame) > maxBlockBytes_) {
     if (!warnedLargeFrame_) {
       spdlog::info(
           "renderer: frames over {} MB are read back by glGetTextureImage (the "
@@ -80,24 +79,23 @@ void PixelPackPass::run(const FrameTargets& targets, OutputPixels pixels,
           maxBlockBytes_ >> 20);
       warnedLargeFrame_ = true;
     }
-    copyByDriver(targets, pixels, layout, packBuffer);
+    copyByDriver(targets, pixels, frame, packBuffer);
     return;
   }
-  packDisplayCodes(targets, pixels, layout, packBuffer);
+  packDisplayCodes(targets, pixels, frame, packBuffer);
 }
 
 void PixelPackPass::packDisplayCodes(const FrameTargets& targets, OutputPixels pixels,
-                                     FramePixels::Layout layout, GLuint packBuffer) {
-  const FramePixels probe{targets.width, targets.height, layout, nullptr};
-  const std::size_t words = wordsFor(probe.size());
+                                     const FramePixels& frame, GLuint packBuffer) {
+  const std::size_t words = wordsFor(frame.size());
   const GLuint program = program_.id();
   glUseProgram(program);
   glProgramUniform1i(program, glGetUniformLocation(program, "uWidth"), targets.width);
-  glProgramUniform1i(program, glGetUniformLocation(program, "uChannels"), probe.channels());
+  glProgramUniform1i(program, glGetUniformLocation(program, "uChannels"), frame.channels());
   glProgramUniform1ui(program, glGetUniformLocation(program, "uWordCount"),
                       static_cast<GLuint>(words));
   glProgramUniform1ui(program, glGetUniformLocation(program, "uByteCount"),
-                      static_cast<GLuint>(probe.size()));
+                      static_cast<GLuint>(frame.size()));
   glBindTextureUnit(0, targets.outputs[static_cast<int>(pixels)].texture.id());
   glBindBufferRange(GL_SHADER_STORAGE_BUFFER, LGH_BIND_PACKED_PIXELS, packBuffer, 0,
                     static_cast<GLsizeiptr>(words * kWordBytes));

@@ -40,8 +40,8 @@ class PixelPackPass {
            GLuint packBuffer);
 
  private:
-  void packDisplayCodes(const FrameTargets& targets, OutputPixels pixels,
-                        FramePixels::Layout layout, GLuint packBuffer);
+  void packDisplayCodes(const FrameTargets& targets, OutputPixels pixels, const FramePixels& frame,
+                        GLuint packBuffer);
 
   gl::Program program_;
   unsigned maxGroupsX_ = 65535;

@@ -126,9 +126,7 @@ SceneCache::Parsed SceneCache::parse(const RendererOptions& rendererOptions,
   return parsed;
 }
 
-std::size_t SceneCache::maxPrefetches() const {
-  return (parsers_ ? parsers_->maxProcesses() : 1) + 1;
-}
+std::size_t SceneCache::prefetchDepth() const { return parsers_ ? parsers_->maxProcesses() : 1; }
 
 void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& options) {
   std::string key;

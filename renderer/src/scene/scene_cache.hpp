@@ -78,8 +78,10 @@ class SceneCache {
   // from that get()). The upload stays for get(), on the GL thread. At most maxPrefetches()
   // parses run at once; a hint beyond that is dropped.
   void prefetch(const SceneSource& source, const SceneLoadOptions& options = {});
-  // One more than the parser processes: one parse per process, and the next one queued.
-  std::size_t maxPrefetches() const;
+  // Scenes that parse side by side: the parser processes (1 without them). Prefetches run at
+  // most one more: one parse per process, and the next one queued.
+  std::size_t prefetchDepth() const;
+  std::size_t maxPrefetches() const { return prefetchDepth() + 1; }
 
   // Content key of a source ("" when it cannot be keyed; then it is never cached).
   std::string keyFor(const SceneSource& source, const SceneLoadOptions& options = {}) const;

@@ -1,28 +1,20 @@
 #include "scene/worker/scene_worker_pool.hpp"
 
-#include <algorithm>
-
 #include "scene/scene.hpp"
 #include "scene/worker/scene_worker.hpp"
 
 namespace lgh::worker {
 
-SceneWorkerPool::SceneWorkerPool(SceneWorkerOptions options)
-    : options_(std::move(options)), maxProcesses_(std::max<std::size_t>(options_.processes, 1)) {
+SceneWorkerPool::SceneWorkerPool(SceneWorkerOptions options) : options_(std::move(options)) {
   workers_.push_back(std::make_unique<SceneWorker>(options_));
   idle_.push_back(workers_.back().get());
 }
 
 SceneWorkerPool::~SceneWorkerPool() = default;
 
-std::size_t SceneWorkerPool::started() const {
-  const std::lock_guard lock(mutex_);
-  return workers_.size();
-}
-
 SceneWorker& SceneWorkerPool::acquire() {
   std::unique_lock lock(mutex_);
-  if (idle_.empty() && workers_.size() + starting_ < maxProcesses_) {
+  if (idle_.empty() && workers_.size() + starting_ < maxProcesses()) {
     // Its start-up (about 0.2 s) happens outside the lock, so that the others stay usable.
     ++starting_;
     lock.unlock();

@@ -4,6 +4,7 @@
 // A load takes an idle worker, or waits for one.
 #pragma once
 
+#include <algorithm>
 #include <condition_variable>
 #include <cstddef>
 #include <memory>
@@ -27,17 +28,14 @@ class SceneWorkerPool {
   // As SceneWorker::load, on whichever worker is free.
   Scene load(const LoadJob& job);
 
-  std::size_t maxProcesses() const { return maxProcesses_; }
-  // Workers started so far (each restarts its own process after a crash).
-  std::size_t started() const;
+  std::size_t maxProcesses() const { return std::max<std::size_t>(options_.processes, 1); }
 
  private:
   SceneWorker& acquire();
   void release(SceneWorker& worker);
 
   SceneWorkerOptions options_;
-  std::size_t maxProcesses_;
-  mutable std::mutex mutex_;
+  std::mutex mutex_;
   std::condition_variable freed_;
   std::vector<std::unique_ptr<SceneWorker>> workers_;
   std::vector<SceneWorker*> idle_;
