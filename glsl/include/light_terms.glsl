@@ -35,7 +35,7 @@ LightTerms lightTerms(Light light, SurfacePoint s, vec3 toViewer) {
 // at a primitive's centre with unit material colours: the fragment then multiplies them by the
 // (textured) diffuse colour and the specular map. Linear in both for Phong, Blinn-Phong and
 // Oren-Nayar; Cook-Torrance's Fresnel takes the F0 factor here. Unshadowed (the direct lighting
-// pass applies the pixel's shadows to the interpolated sum, see direct_lighting.frag).
+// pass applies the pixel's shadows to the interpolated sum, see direct_lighting.comp).
 #ifdef LGH_LIGHTS_BUFFER
 struct VertexLighting {
   vec3 diffuse;

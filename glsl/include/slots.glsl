@@ -15,7 +15,7 @@
 #define LGH_BIND_RAY_TARGETS 7      // shadow rays: vec4 target per pixel and ray
 #define LGH_BIND_RAY_VISIBILITY 8   // shadow rays: visibility bits, uint per pixel and word
 #define LGH_IMAGE_SHADOW_RATIO 0    // the shadow ratio a filter pass writes
-#define LGH_UNIT_COMPOSITE_RATIO 3  // the filtered shadow ratio in composite.frag
+#define LGH_UNIT_COMPOSITE_RATIO 3  // the filtered shadow ratio in composite.comp
 #define LGH_UNIT_GBUFFER_LAYERS 6   // the G-buffer's material layers (include/gbuffer.glsl)
 
 // ---- the LGH lighting passes (include/lgh_shading.glsl) -----------------------------------------

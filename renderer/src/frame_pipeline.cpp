@@ -81,13 +81,14 @@ void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached
                       lightCount, request.settings.depthPrepass},
                      *cached.gpu, targets_);
   }
+  // The models and layers the G-buffer holds: what the lighting kernels are compiled for.
+  const BrdfFeatures brdf = brdfFeatures(materials, cached.gpu->drawItems());
   LghFrameLighting::ShadowSamples samples;
   if (lgh.enabled) {
     if (!lghLighting_) lghLighting_ = std::make_unique<LghFrameLighting>();
     if (probe != nullptr) prepareProbe(request, cached, *probe);
     const LghGiInputs gi{request.settings.gi,    lights, lightBuffer_.id(),
                          shadowSettings.tracing, gi_,    materials.materials()};
-    const BrdfFeatures brdf = brdfFeatures(materials, cached.gpu->drawItems());
     lghLighting_->run(lgh, cached, camera, brdf, targets_, timer, report, probe, &gi);
     if (probe != nullptr) probe->visibility = nullptr;  // it refers to this frame's scene
     samples = lghLighting_->shadowSamples();
@@ -98,7 +99,7 @@ void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached
   {
     gl::ScopedGpuPass pass(timer, "direct lighting");
     directLightingPass_.run({lightBuffer_.id(), lightCount, shadows_.layout(),
-                             shadows_.visibility(), request.settings.ambient},
+                             shadows_.visibility(), request.settings.ambient, brdf},
                             camera, targets_);
   }
   const GLuint shadowRatio =

@@ -28,16 +28,18 @@ void setDisplayUniforms(GLuint program, const OutputSettings& output, int height
   glProgramUniform1f(program, glGetUniformLocation(program, "uExposure"), output.exposure);
 }
 
+void uploadSrgbThresholds(GLuint program) {
+  const auto& thresholds = image_io::detail::srgbThresholds();
+  glProgramUniform1fv(program, glGetUniformLocation(program, "uSrgbThresholds"), 255,
+                      thresholds.data());
+}
+
 gl::Program buildDisplayProgram(const char* fragmentShader, const std::string& defines,
                                 bool display) {
   gl::Program program = gl::buildProgram(
       {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragmentShader}},
       defines + (display ? "#define LGH_DISPLAY_OUTPUT 1\n" : ""));
-  if (display) {
-    const auto& thresholds = image_io::detail::srgbThresholds();
-    glProgramUniform1fv(program.id(), glGetUniformLocation(program.id(), "uSrgbThresholds"), 255,
-                        thresholds.data());
-  }
+  if (display) uploadSrgbThresholds(program.id());
   return program;
 }
 
@@ -53,41 +55,64 @@ OutputPixels outputPixelsFor(const OutputSettings& output) {
   return OutputPixels::Display8;
 }
 
-const gl::Program& CompositePass::program(OutputPixels pixels, bool toScene) {
-  if (toScene) {
-    if (!scene_) {
-      scene_.emplace(buildDisplayProgram("composite.frag", "#define LGH_SCENE_TARGET 1\n", false));
-    }
-    return *scene_;
+namespace {
+
+// The composite's image format for a target: what glsl/composite.comp stores through.
+GLenum imageFormat(OutputPixels pixels) {
+  switch (pixels) {
+    case OutputPixels::Display8:
+      return GL_RGBA8UI;
+    case OutputPixels::LinearHalf:
+      return GL_RGBA16F;
+    case OutputPixels::LinearFloat:
+      return GL_RGBA32F;
   }
-  const bool display = pixels == OutputPixels::Display8;
-  std::optional<gl::Program>& slot = display ? display_ : linear_;
-  if (!slot) slot.emplace(buildDisplayProgram("composite.frag", "", display));
+  return GL_RGBA32F;
+}
+
+gl::Program buildCompositeProgram(OutputPixels pixels, bool toScene) {
+  std::string defines;
+  if (toScene) defines += "#define LGH_SCENE_TARGET 1\n";
+  if (pixels == OutputPixels::Display8) {
+    defines += "#define LGH_DISPLAY_OUTPUT 1\n";
+  } else {
+    defines += pixels == OutputPixels::LinearHalf ? "#define LGH_OUTPUT_FORMAT rgba16f\n"
+                                                  : "#define LGH_OUTPUT_FORMAT rgba32f\n";
+  }
+  gl::Program program = gl::buildComputeProgram("composite.comp", defines);
+  if (pixels == OutputPixels::Display8) uploadSrgbThresholds(program.id());
+  return program;
+}
+
+}  // namespace
+
+const gl::Program& CompositePass::program(OutputPixels pixels, bool toScene) {
+  // The scene target is linear float; the outputs one program per kind of pixels.
+  std::optional<gl::Program>& slot = toScene ? scene_ : programs_[static_cast<std::size_t>(pixels)];
+  if (!slot)
+    slot.emplace(buildCompositeProgram(toScene ? OutputPixels::LinearFloat : pixels, toScene));
   return *slot;
 }
 
 void CompositePass::run(const OutputSettings& output, OutputPixels pixels, bool hasIndirect,
                         GLuint shadowRatio, FrameTargets& targets) {
-  draw(output, pixels, false, hasIndirect, shadowRatio, targets);
+  dispatch(output, pixels, false, hasIndirect, shadowRatio, targets);
 }
 
 void CompositePass::runToScene(const OutputSettings& output, bool hasIndirect, GLuint shadowRatio,
                                FrameTargets& targets) {
-  draw(output, OutputPixels::LinearFloat, true, hasIndirect, shadowRatio, targets);
+  dispatch(output, OutputPixels::LinearFloat, true, hasIndirect, shadowRatio, targets);
 }
 
-void CompositePass::draw(const OutputSettings& output, OutputPixels pixels, bool toScene,
-                         bool hasIndirect, GLuint shadowRatio, FrameTargets& targets) {
+void CompositePass::dispatch(const OutputSettings& output, OutputPixels pixels, bool toScene,
+                             bool hasIndirect, GLuint shadowRatio, FrameTargets& targets) {
   const OutputTarget& target = toScene ? targets.sceneLinear() : targets.output(pixels);
-  glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
-  glViewport(0, 0, targets.width, targets.height);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_BLEND);
   const GLuint program = this->program(pixels, toScene).id();
   glUseProgram(program);
   glProgramUniform1i(program, glGetUniformLocation(program, "uHasIndirect"), hasIndirect ? 1 : 0);
   glProgramUniform1i(program, glGetUniformLocation(program, "uHasShadowRatio"),
                      shadowRatio != 0 ? 1 : 0);
+  glProgramUniform1i(program, glGetUniformLocation(program, "uWidth"), targets.width);
   setDisplayUniforms(program, output, targets.height);
   glBindTextureUnit(LGH_UNIT_COMPOSITE_RATIO, shadowRatio);
   const float alpha = output.transparentBackground ? 0.0F : 1.0F;
@@ -97,9 +122,13 @@ void CompositePass::draw(const OutputSettings& output, OutputPixels pixels, bool
   const GLuint textures[3] = {targets.direct.id(), targets.indirect.id(),
                               targets.gbuffer.position.id()};
   glBindTextures(0, 3, textures);
-  glBindVertexArray(emptyVertexArray_.id());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
+  glBindImageTexture(LGH_IMAGE_OUTPUT, target.texture.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                     imageFormat(toScene ? OutputPixels::LinearFloat : pixels));
+  glDispatchCompute(gl::groups2D(targets.width), gl::groups2D(targets.height), 1);
+  // Read next by the pixel pack pass, a read-back, or the forward blend's framebuffer.
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                  GL_PIXEL_BUFFER_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
+                  GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 FloatImage readLinearOutput(FrameTargets& targets) {

@@ -5,10 +5,11 @@
 //            sRGB; RGBA8UI) for a PNG, linear light (RGBA16F / RGBA32F) for an EXR;
 //            or (runToScene, frames with blended surfaces) FrameTargets::scene, linear light with
 //            the rows as GL stores them, for the forward blend and then the display pass
-//   shaders: glsl/fullscreen.vert, glsl/composite.frag (+ include/display_transform.glsl)
+//   shaders: glsl/composite.comp (+ include/display_transform.glsl), a compute pass
 // The pixel pack pass (passes/pixel_pack_pass.hpp) then copies the output into a read-back buffer.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -31,18 +32,18 @@ class CompositePass {
                   FrameTargets& targets);
 
  private:
-  void draw(const OutputSettings& output, OutputPixels pixels, bool toScene, bool hasIndirect,
-            GLuint shadowRatio, FrameTargets& targets);
+  void dispatch(const OutputSettings& output, OutputPixels pixels, bool toScene, bool hasIndirect,
+                GLuint shadowRatio, FrameTargets& targets);
   const gl::Program& program(OutputPixels pixels, bool toScene);
 
-  std::optional<gl::Program> display_;  // each compiled on first use
-  std::optional<gl::Program> linear_;
+  std::array<std::optional<gl::Program>, 3> programs_;  // by OutputPixels, compiled on first use
   std::optional<gl::Program> scene_;
-  gl::VertexArray emptyVertexArray_;
 };
 
+// Uploads the sRGB thresholds of include/display_transform.glsl to a program that includes it.
+void uploadSrgbThresholds(GLuint program);
 // A fullscreen program of glsl/fullscreen.vert + `fragmentShader` with `defines`; `display` adds
-// LGH_DISPLAY_OUTPUT and uploads the sRGB thresholds of include/display_transform.glsl.
+// LGH_DISPLAY_OUTPUT and uploads the sRGB thresholds.
 gl::Program buildDisplayProgram(const char* fragmentShader, const std::string& defines,
                                 bool display);
 // uHeight, uToneMap and uExposure of a program that writes output(pixels) (unused ones ignored).

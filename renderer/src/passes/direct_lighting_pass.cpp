@@ -1,6 +1,7 @@
 #include "passes/direct_lighting_pass.hpp"
 
 #include <array>
+#include <string>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -17,20 +18,22 @@ void bindGBuffer(const GBufferTargets& gbuffer) {
   glBindTextureUnit(LGH_UNIT_GBUFFER_LAYERS, gbuffer.layers.id());
 }
 
-DirectLightingPass::DirectLightingPass()
-    : program_(gl::buildProgram(
-          {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "direct_lighting.frag"}})) {}
+GLuint DirectLightingPass::program(const BrdfFeatures& brdf) {
+  const std::string defines = brdf.defines();
+  auto it = programs_.find(defines);
+  if (it == programs_.end()) {
+    it = programs_.emplace(defines, gl::buildComputeProgram("direct_lighting.comp", defines)).first;
+  }
+  return it->second.id();
+}
 
 void DirectLightingPass::run(const DirectLightingInputs& inputs, const CameraMatrices& camera,
                              FrameTargets& targets) {
-  glBindFramebuffer(GL_FRAMEBUFFER, targets.directFramebuffer.id());
-  glViewport(0, 0, targets.width, targets.height);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_BLEND);
-  const GLuint program = program_.id();
+  const GLuint program = this->program(inputs.brdf);
   glUseProgram(program);
   glProgramUniform1i(program, glGetUniformLocation(program, "uLightCount"), inputs.lightCount);
   glProgramUniform1i(program, glGetUniformLocation(program, "uFrameWidth"), targets.width);
+  glProgramUniform1i(program, glGetUniformLocation(program, "uFrameHeight"), targets.height);
   setShadowRayUniforms(program, inputs.shadows);
   glProgramUniform3fv(program, glGetUniformLocation(program, "uCameraPosition"), 1,
                       glm::value_ptr(camera.position));
@@ -38,9 +41,10 @@ void DirectLightingPass::run(const DirectLightingInputs& inputs, const CameraMat
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_LIGHTS, inputs.lights);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_VISIBILITY, inputs.visibility);
   bindGBuffer(targets.gbuffer);
-  glBindVertexArray(emptyVertexArray_.id());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
+  glBindImageTexture(LGH_IMAGE_OUTPUT, targets.direct.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                     GL_RGBA16F);
+  glDispatchCompute(gl::groups2D(targets.width), gl::groups2D(targets.height), 1);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 }  // namespace lgh

@@ -2,13 +2,16 @@
 //   inputs:  FrameTargets::gbuffer, the frame's lights buffer, the shadow rays' visibility (the
 //            first layout.shadowedLights lights are shadowed), camera position, ambient term
 //   outputs: FrameTargets::direct (HDR radiance, alpha = coverage)
-//   shaders: glsl/fullscreen.vert, glsl/direct_lighting.frag (BRDF: glsl/include/brdf.glsl)
+//   shaders: glsl/direct_lighting.comp (BRDF: glsl/include/brdf.glsl), a compute pass compiled
+//            for the frame's material models and layers (passes/brdf_features.hpp)
 #pragma once
 
-#include <vector>
+#include <map>
+#include <string>
 
 #include "gl/gl_objects.hpp"
 #include "lgh/request.hpp"
+#include "passes/brdf_features.hpp"
 #include "passes/frame_targets.hpp"
 #include "passes/shadow_ray_setup_pass.hpp"
 #include "scene/camera.hpp"
@@ -24,16 +27,17 @@ struct DirectLightingInputs {
   ShadowRayLayout shadows;  // shadowedLights 0: unshadowed
   GLuint visibility = 0;    // the shadow rays' visibility bits (shadows.shadowedLights > 0)
   float ambient = 0.0F;
+  BrdfFeatures brdf;  // the models and layers the G-buffer holds
 };
 
 class DirectLightingPass {
  public:
-  DirectLightingPass();
   void run(const DirectLightingInputs& inputs, const CameraMatrices& camera, FrameTargets& targets);
 
  private:
-  gl::Program program_;
-  gl::VertexArray emptyVertexArray_;
+  GLuint program(const BrdfFeatures& brdf);
+
+  std::map<std::string, gl::Program> programs_;  // by BrdfFeatures::defines(), built on first use
 };
 
 }  // namespace lgh

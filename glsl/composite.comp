@@ -1,14 +1,15 @@
 #version 450 core
-// Composite pass: sums the lighting buffers into the final linear colour and puts the background
+// Composite pass (compute: see direct_lighting.comp for why): sums the lighting buffers into the final linear colour and puts the background
 // (or transparency) where no geometry was drawn. The LGH lighting is unshadowed; the filtered
 // shadow ratio scales it when the frame has one.
 //
 // It writes what the frame is read back as, with the rows turned over (the first row GL stores is
 // the image's top row, so no one flips them on the CPU):
 //   LGH_DISPLAY_OUTPUT  PNG: exposure, tone map and sRGB as 8-bit codes (RGBA8UI target)
-//   otherwise           EXR: linear light (RGBA16F or RGBA32F target)
+//   otherwise           EXR: linear light (LGH_OUTPUT_FORMAT: rgba16f or rgba32f target)
 //   LGH_SCENE_TARGET    frames with blended surfaces: linear light into the scene target, rows as
 //                       GL stores them (the display pass turns them over after the forward blend)
+// Output: image unit LGH_IMAGE_OUTPUT.
 
 #include "include/slots.glsl"
 #ifdef LGH_DISPLAY_OUTPUT
@@ -23,14 +24,16 @@ layout(binding = LGH_UNIT_COMPOSITE_RATIO) uniform sampler2D uShadowRatio;
 uniform bool uHasIndirect;
 uniform bool uHasShadowRatio;
 uniform vec4 uBackground;  // rgb, a = alpha of the background (0 when transparent)
+uniform int uWidth;
 uniform int uHeight;       // of the frame, to turn the rows over
 
+layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
 #ifdef LGH_DISPLAY_OUTPUT
 uniform int uToneMap;  // LGH_TONE_MAP_*
 uniform float uExposure;
-layout(location = 0) out uvec4 outCode;
+layout(binding = LGH_IMAGE_OUTPUT, rgba8ui) writeonly uniform uimage2D uCodes;
 #else
-layout(location = 0) out vec4 outColor;
+layout(binding = LGH_IMAGE_OUTPUT, LGH_OUTPUT_FORMAT) writeonly uniform image2D uColor;
 #endif
 
 vec4 linearColor(ivec2 pixel) {
@@ -44,17 +47,20 @@ vec4 linearColor(ivec2 pixel) {
 }
 
 void main() {
+  ivec2 target = ivec2(gl_GlobalInvocationID.xy);
+  if (target.x >= uWidth || target.y >= uHeight) return;
 #ifdef LGH_SCENE_TARGET
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  ivec2 pixel = target;
 #else
-  ivec2 pixel = ivec2(int(gl_FragCoord.x), uHeight - 1 - int(gl_FragCoord.y));
+  ivec2 pixel = ivec2(target.x, uHeight - 1 - target.y);
 #endif
   vec4 color = linearColor(pixel);
 #ifdef LGH_DISPLAY_OUTPUT
-  outCode = uvec4(lghDisplayChannel(color.r, uToneMap, uExposure),
-                  lghDisplayChannel(color.g, uToneMap, uExposure),
-                  lghDisplayChannel(color.b, uToneMap, uExposure), lghAlpha8(color.a));
+  imageStore(uCodes, target,
+             uvec4(lghDisplayChannel(color.r, uToneMap, uExposure),
+                   lghDisplayChannel(color.g, uToneMap, uExposure),
+                   lghDisplayChannel(color.b, uToneMap, uExposure), lghAlpha8(color.a)));
 #else
-  outColor = color;
+  imageStore(uColor, target, color);
 #endif
 }

@@ -9,7 +9,10 @@
 // primitive; their pixels scale it by the ratio of their shadowed to their unshadowed per-pixel
 // sum (the ratio estimator the LGH's shadows use too), so that shadows keep the pixel's detail.
 // Inputs: G-buffer (include/gbuffer.glsl), lights SSBO, shadow-ray visibility bits.
-// Output: HDR radiance.
+// Output: HDR radiance (image unit LGH_IMAGE_OUTPUT).
+// A compute pass, not a fullscreen triangle: on GPUs with few graphics units (Hopper) a fragment
+// pass runs on a small part of the chip. Compiled for the frame's material models and layers
+// (LGH_BRDF_MODELS / LGH_BRDF_LAYERS of include/brdf.glsl), as the LGH kernels are.
 
 #define LGH_READ_VISIBILITY
 #define LGH_LIGHTS_BUFFER
@@ -17,25 +20,23 @@
 #include "include/light_terms.glsl"
 #include "include/ray_batch.glsl"
 
+layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
+layout(binding = LGH_IMAGE_OUTPUT, rgba16f) writeonly uniform image2D uRadiance;
+
 uniform int uLightCount;
 uniform vec3 uCameraPosition;
 uniform float uAmbient;
 uniform int uFrameWidth;
-
-layout(location = 0) out vec4 outRadiance;
+uniform int uFrameHeight;
 
 // Relief mapping hides light i where bit i of the pixel's mask is set (first 23 lights).
 float selfShadowVisibility(SurfacePoint s, int light) {
   return light < 23 && (s.selfShadowMask & (1u << uint(light))) != 0u ? 0.0 : 1.0;
 }
 
-void main() {
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
+vec4 directRadiance(ivec2 pixel) {
   SurfacePoint s;
-  if (!readSurface(pixel, s)) {
-    outRadiance = vec4(0.0);
-    return;
-  }
+  if (!readSurface(pixel, s)) return vec4(0.0);
   vec3 toViewer = normalize(uCameraPosition - s.position);
   vec3 radiance = texelFetch(gEmissive, pixel, 0).rgb;
   radiance += uAmbient * ambientResponse(s);
@@ -56,5 +57,11 @@ void main() {
   } else {
     radiance += shadowed;
   }
-  outRadiance = vec4(radiance, 1.0);
+  return vec4(radiance, 1.0);
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (pixel.x >= uFrameWidth || pixel.y >= uFrameHeight) return;
+  imageStore(uRadiance, pixel, directRadiance(pixel));
 }
