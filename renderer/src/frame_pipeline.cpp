@@ -75,14 +75,15 @@ void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached
   targets_.resize(output.width, output.height);
   uploadLights(lights, lightBuffer_);
   const auto lightCount = static_cast<int>(lights.size());
-  {
-    gl::ScopedGpuPass pass(timer, "gbuffer");
-    gbufferPass_.run({&materials, &camera, &request.settings.primitives, lightBuffer_.id(),
-                      lightCount, request.settings.depthPrepass},
-                     *cached.gpu, targets_);
-  }
   // The models and layers the G-buffer holds: what the lighting kernels are compiled for.
   const BrdfFeatures brdf = brdfFeatures(materials, cached.gpu->drawItems());
+  {
+    gl::ScopedGpuPass pass(timer, "gbuffer");
+    gbufferPass_.run(
+        {&materials, &camera, &request.settings.primitives, lightBuffer_.id(), lightCount,
+         request.settings.depthPrepass, brdf.usesLayersTarget(), probe != nullptr},
+        *cached.gpu, targets_);
+  }
   LghFrameLighting::ShadowSamples samples;
   if (lgh.enabled) {
     if (!lghLighting_) lghLighting_ = std::make_unique<LghFrameLighting>();

@@ -56,6 +56,14 @@ void BrdfFeatures::add(MaterialModel model, std::uint32_t layerBits) {
   if (model == MaterialModel::MetallicRoughness) layers |= layerBits;
 }
 
+bool BrdfFeatures::usesLayersTarget() const {
+  if (layers != 0U) return true;
+  for (const auto& entry : EnumNames<MaterialModel>::names) {
+    if (isClassicModel(entry.value) && has(entry.value)) return true;
+  }
+  return false;
+}
+
 std::string BrdfFeatures::defines() const {
   if (all()) return {};
   return fmt::format("#define LGH_BRDF_MODELS {}\n#define LGH_BRDF_LAYERS {}\n", models, layers);

@@ -38,6 +38,9 @@ struct BrdfFeatures {
   void add(MaterialModel model, std::uint32_t layerBits);
   bool has(MaterialModel model) const { return (models & modelBit(model)) != 0U; }
   bool all() const { return models == kAllModels && layers == kAllLayers; }
+  // Whether a surface of the frame writes the G-buffer's layers target (include/gbuffer.glsl):
+  // metallic-roughness with a layer, or a classic model (their parameters live there).
+  bool usesLayersTarget() const;
   // "#define LGH_BRDF_MODELS ..." and "#define LGH_BRDF_LAYERS ..."; none where every model and
   // layer is present, so that the generic kernel is the shader as written.
   std::string defines() const;

@@ -16,12 +16,7 @@ GBufferPass::GBufferPass() {
 void GBufferPass::run(const Inputs& inputs, GpuScene& gpuScene, FrameTargets& targets) {
   glBindFramebuffer(GL_FRAMEBUFFER, targets.gbuffer.framebuffer.id());
   glViewport(0, 0, targets.width, targets.height);
-  const std::array<float, 4> zero{0, 0, 0, 0};
-  for (GLint i = 0; i < 5; ++i) glClearBufferfv(GL_COLOR, i, zero.data());
-  const std::array<GLuint, 4> zeroBits{0, 0, 0, 0};
-  glClearBufferuiv(GL_COLOR, 5, zeroBits.data());
-  const float farDepth = 1.0F;
-  glClearBufferfv(GL_DEPTH, 0, &farDepth);
+  clearTargets(inputs, targets);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDisable(GL_BLEND);
@@ -44,6 +39,25 @@ void GBufferPass::run(const Inputs& inputs, GpuScene& gpuScene, FrameTargets& ta
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_FRAMEBUFFER_SRGB);
   unbindMaterialSamplers();
+}
+
+void GBufferPass::clearTargets(const Inputs& inputs, const FrameTargets& targets) {
+  // Draw buffer i is colour attachment i (passes/frame_targets.cpp); the last is the layers'.
+  std::array<GLenum, 6> buffers{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5};
+  const bool layers = inputs.writeLayers || inputs.clearEveryTarget;
+  if (!layers) buffers[5] = GL_NONE;
+  glNamedFramebufferDrawBuffers(targets.gbuffer.framebuffer.id(),
+                                static_cast<GLsizei>(buffers.size()), buffers.data());
+  const std::array<float, 4> zero{0, 0, 0, 0};
+  glClearBufferfv(GL_COLOR, 0, zero.data());  // the coverage
+  if (inputs.clearEveryTarget) {
+    for (GLint i = 1; i < 5; ++i) glClearBufferfv(GL_COLOR, i, zero.data());
+    const std::array<GLuint, 4> zeroBits{0, 0, 0, 0};
+    glClearBufferuiv(GL_COLOR, 5, zeroBits.data());
+  }
+  const float farDepth = 1.0F;
+  glClearBufferfv(GL_DEPTH, 0, &farDepth);
 }
 
 void GBufferPass::drawOpaque(const Inputs& inputs, GpuScene& gpuScene,

@@ -9,6 +9,10 @@
 //            points through glsl/gbuffer_lines.geom / glsl/gbuffer_points.geom, which widen them
 //            into screen-space quads; flat shading through glsl/gbuffer_flat.geom; displacement
 //            through glsl/gbuffer_displace.tesc/.tese (passes/surface_programs.hpp)
+// Only the position target (its w is the coverage every reader tests first) and the depth are
+// cleared: the other targets are read only where something was drawn, and clearing them is a
+// large share of the pass on GPUs with few graphics units (docs/BENCHMARKS.md). A frame whose
+// surfaces need no layers target (no material layer, no classic model) does not write it.
 // With a depth pre-pass (settings.depth_prepass) the surfaces are drawn twice: depth alone, then
 // the targets with the depth test at LEQUAL and depth writes off, so each pixel's targets are
 // written once. The same programs draw both times: GL's invariance rules then give the same
@@ -35,7 +39,9 @@ class GBufferPass {
     const PrimitiveSettings* primitives = nullptr;
     GLuint lights = 0;  // SSBO of GpuLight
     int lightCount = 0;
-    bool depthPrepass = false;  // settings.depth_prepass
+    bool depthPrepass = false;      // settings.depth_prepass
+    bool writeLayers = true;        // BrdfFeatures::usesLayersTarget()
+    bool clearEveryTarget = false;  // a probe reads the targets whole, background included
   };
   void run(const Inputs& inputs, GpuScene& gpuScene, FrameTargets& targets);
 
@@ -44,6 +50,7 @@ class GBufferPass {
   float maxTessellationLevel() const { return maxTessellationLevel_; }
 
  private:
+  void clearTargets(const Inputs& inputs, const FrameTargets& targets);
   // One draw of every opaque surface, with the depth and colour state the caller set.
   void drawOpaque(const Inputs& inputs, GpuScene& gpuScene, const FrameTargets& targets);
 
