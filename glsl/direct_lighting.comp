@@ -26,6 +26,7 @@ layout(binding = LGH_IMAGE_OUTPUT, rgba16f) writeonly uniform image2D uRadiance;
 uniform int uLightCount;
 uniform vec3 uCameraPosition;
 uniform float uAmbient;
+uniform bool uHasEmission;  // else the G-buffer pass left the emissive target unwritten
 uniform int uFrameWidth;
 uniform int uFrameHeight;
 
@@ -38,7 +39,7 @@ vec4 directRadiance(ivec2 pixel) {
   SurfacePoint s;
   if (!readSurface(pixel, s)) return vec4(0.0);
   vec3 toViewer = normalize(uCameraPosition - s.position);
-  vec3 radiance = texelFetch(gEmissive, pixel, 0).rgb;
+  vec3 radiance = uHasEmission ? texelFetch(gEmissive, pixel, 0).rgb : vec3(0.0);
   radiance += uAmbient * ambientResponse(s);
   uint pixelIndex = uint(pixel.y) * uint(uFrameWidth) + uint(pixel.x);
   vec3 shadowed = vec3(0.0);

@@ -77,12 +77,19 @@ void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached
   const auto lightCount = static_cast<int>(lights.size());
   // The models and layers the G-buffer holds: what the lighting kernels are compiled for.
   const BrdfFeatures brdf = brdfFeatures(materials, cached.gpu->drawItems());
+  const bool emission = surfacesEmit(materials, cached.gpu->drawItems());
   {
     gl::ScopedGpuPass pass(timer, "gbuffer");
-    gbufferPass_.run(
-        {&materials, &camera, &request.settings.primitives, lightBuffer_.id(), lightCount,
-         request.settings.depthPrepass, brdf.usesLayersTarget(), probe != nullptr},
-        *cached.gpu, targets_);
+    gbufferPass_.run({.materials = &materials,
+                      .camera = &camera,
+                      .primitives = &request.settings.primitives,
+                      .lights = lightBuffer_.id(),
+                      .lightCount = lightCount,
+                      .depthPrepass = request.settings.depthPrepass,
+                      .writeLayers = brdf.usesLayersTarget(),
+                      .writeEmissive = emission,
+                      .clearEveryTarget = probe != nullptr},
+                     *cached.gpu, targets_);
   }
   LghFrameLighting::ShadowSamples samples;
   if (lgh.enabled) {
@@ -100,7 +107,7 @@ void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached
   {
     gl::ScopedGpuPass pass(timer, "direct lighting");
     directLightingPass_.run({lightBuffer_.id(), lightCount, shadows_.layout(),
-                             shadows_.visibility(), request.settings.ambient, brdf},
+                             shadows_.visibility(), request.settings.ambient, brdf, emission},
                             camera, targets_);
   }
   const GLuint shadowRatio =

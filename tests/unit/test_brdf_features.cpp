@@ -152,4 +152,33 @@ TEST(BrdfFeatures, LayerBitsFollowTheMaterial) {
   EXPECT_EQ(lgh::materialLayerBits(material), lgh::kLayerSpecular | lgh::kLayerTransmission);
 }
 
+// The G-buffer pass leaves out the layers and emissive targets of frames that need neither; a
+// surface that writes one must be seen, or its pixels would be read from a stale target.
+TEST(BrdfFeatures, LayersTargetOnlyForMaterialLayersOrClassicModels) {
+  lgh::Scene scene = plainScene();
+  EXPECT_FALSE(featuresOf(scene).usesLayersTarget());
+  EXPECT_TRUE(featuresOf(lgh::makeDemoScene()).usesLayersTarget());  // its row of classic models
+  scene.materials[static_cast<std::size_t>(materialIndex(scene, "white"))].clearcoat.factor = 0.5F;
+  EXPECT_TRUE(featuresOf(scene).usesLayersTarget());
+  scene = plainScene();
+  scene.materials[static_cast<std::size_t>(materialIndex(scene, "red"))].model =
+      MaterialModel::OrenNayar;
+  EXPECT_TRUE(featuresOf(scene).usesLayersTarget());
+}
+
+TEST(BrdfFeatures, EmissionFromAFactorALightMapOrAnUnlitSurface) {
+  lgh::Scene scene = plainScene();
+  const auto emits = [](const lgh::Scene& s, std::vector<lgh::GpuScene::DrawItem> items) {
+    return lgh::surfacesEmit(lgh::MaterialTable(s, {}), items);
+  };
+  EXPECT_TRUE(emits(scene, drawItemsOf(scene)));  // the demo's ceiling panel
+  for (lgh::Material& material : scene.materials) material.emissiveFactor = glm::vec3(0.0F);
+  EXPECT_FALSE(emits(scene, drawItemsOf(scene)));
+  std::vector<lgh::GpuScene::DrawItem> items = drawItemsOf(scene);
+  items[0].unlit = true;
+  EXPECT_TRUE(emits(scene, items));
+  scene.materials[static_cast<std::size_t>(materialIndex(scene, "white"))].lightMap.image = 0;
+  EXPECT_TRUE(emits(scene, drawItemsOf(scene)));
+}
+
 }  // namespace

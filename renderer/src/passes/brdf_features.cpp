@@ -84,4 +84,15 @@ BrdfFeatures brdfFeatures(const MaterialTable& materials,
   return features;
 }
 
+bool surfacesEmit(const MaterialTable& materials, std::span<const GpuScene::DrawItem> items) {
+  for (const GpuScene::DrawItem& item : items) {
+    const Material& material = materials.at(item.material);
+    if (material.emissiveFactor != glm::vec3(0.0F) || material.lightMap.valid() ||
+        effectiveModel(material, item.unlit) == MaterialModel::Unlit) {
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace lgh

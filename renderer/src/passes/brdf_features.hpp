@@ -59,4 +59,8 @@ struct BrdfFeatures {
 BrdfFeatures brdfFeatures(const MaterialTable& materials,
                           std::span<const GpuScene::DrawItem> items);
 
+// Whether any of `items` writes emission into the G-buffer's emissive target: an emissive
+// factor, an unlit surface (its colour is its emission) or a light map.
+bool surfacesEmit(const MaterialTable& materials, std::span<const GpuScene::DrawItem> items);
+
 }  // namespace lgh

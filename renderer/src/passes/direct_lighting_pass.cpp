@@ -38,6 +38,8 @@ void DirectLightingPass::run(const DirectLightingInputs& inputs, const CameraMat
   glProgramUniform3fv(program, glGetUniformLocation(program, "uCameraPosition"), 1,
                       glm::value_ptr(camera.position));
   glProgramUniform1f(program, glGetUniformLocation(program, "uAmbient"), inputs.ambient);
+  glProgramUniform1i(program, glGetUniformLocation(program, "uHasEmission"),
+                     inputs.emission ? 1 : 0);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_LIGHTS, inputs.lights);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_VISIBILITY, inputs.visibility);
   bindGBuffer(targets.gbuffer);

@@ -27,7 +27,8 @@ struct DirectLightingInputs {
   ShadowRayLayout shadows;  // shadowedLights 0: unshadowed
   GLuint visibility = 0;    // the shadow rays' visibility bits (shadows.shadowedLights > 0)
   float ambient = 0.0F;
-  BrdfFeatures brdf;  // the models and layers the G-buffer holds
+  BrdfFeatures brdf;     // the models and layers the G-buffer holds
+  bool emission = true;  // the G-buffer's emissive target was written (surfacesEmit())
 };
 
 class DirectLightingPass {

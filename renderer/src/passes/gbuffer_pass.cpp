@@ -45,8 +45,8 @@ void GBufferPass::clearTargets(const Inputs& inputs, const FrameTargets& targets
   // Draw buffer i is colour attachment i (passes/frame_targets.cpp); the last is the layers'.
   std::array<GLenum, 6> buffers{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
                                 GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5};
-  const bool layers = inputs.writeLayers || inputs.clearEveryTarget;
-  if (!layers) buffers[5] = GL_NONE;
+  if (!inputs.writeEmissive && !inputs.clearEveryTarget) buffers[4] = GL_NONE;
+  if (!inputs.writeLayers && !inputs.clearEveryTarget) buffers[5] = GL_NONE;
   glNamedFramebufferDrawBuffers(targets.gbuffer.framebuffer.id(),
                                 static_cast<GLsizei>(buffers.size()), buffers.data());
   const std::array<float, 4> zero{0, 0, 0, 0};

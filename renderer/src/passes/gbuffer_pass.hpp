@@ -12,7 +12,8 @@
 // Only the position target (its w is the coverage every reader tests first) and the depth are
 // cleared: the other targets are read only where something was drawn, and clearing them is a
 // large share of the pass on GPUs with few graphics units (docs/BENCHMARKS.md). A frame whose
-// surfaces need no layers target (no material layer, no classic model) does not write it.
+// surfaces need no layers target (no material layer, no classic model) does not write it, nor
+// the emissive target where nothing emits (the direct lighting pass then does not read it).
 // With a depth pre-pass (settings.depth_prepass) the surfaces are drawn twice: depth alone, then
 // the targets with the depth test at LEQUAL and depth writes off, so each pixel's targets are
 // written once. The same programs draw both times: GL's invariance rules then give the same
@@ -41,6 +42,7 @@ class GBufferPass {
     int lightCount = 0;
     bool depthPrepass = false;      // settings.depth_prepass
     bool writeLayers = true;        // BrdfFeatures::usesLayersTarget()
+    bool writeEmissive = true;      // surfacesEmit()
     bool clearEveryTarget = false;  // a probe reads the targets whole, background included
   };
   void run(const Inputs& inputs, GpuScene& gpuScene, FrameTargets& targets);
