@@ -61,6 +61,22 @@ TEST_F(GoldenRender, BoxTexturedGltf) {
   EXPECT_EQ(lgh::test::checkGolden(image, "box_textured_128x96", kMaxMeanError, kMaxFraction), "");
 }
 
+// The G-buffer pass leaves the emissive and layers targets unwritten in frames whose surfaces need
+// neither (passes/gbuffer_pass.hpp). A plain frame right after an unlit one (all emission) and a
+// Phong one (classic parameters in the layers target), same asset and size, so that every pixel
+// still holds the earlier frames' values, must be the plain golden image.
+TEST_F(GoldenRender, APlainFrameReadsNothingLeftByTheFramesBefore) {
+  const std::string box = R"("scene": {"asset": "BoxTextured-glTF/BoxTextured.gltf"},
+                             "output": {"width": 128, "height": 96})";
+  for (const char* model : {"unlit", "phong"}) {
+    render("{" + box + R"(, "materials": [{"match": {"all": true},
+                                           "parameters": {"model": ")" + model + R"("}}]})");
+  }
+  EXPECT_EQ(lgh::test::checkGolden(render("{" + box + "}"), "box_textured_128x96", kMaxMeanError,
+                                   kMaxFraction),
+            "");
+}
+
 TEST_F(GoldenRender, CylinderEngineGlb) {
   auto image = render(R"({"scene": {"asset": "2CylinderEngine-glTF-Binary/2CylinderEngine.glb"},
                          "camera": {"type": "auto", "view_direction": [1, 0.5, 1]},
