@@ -8,17 +8,13 @@
 // plane: no light crosses depth edges), demodulated by their base colour (remodulated by p's), so
 // that textures stay sharp. A tile with no matching neighbour is replaced by the mean of the
 // others.
-// This is the smoothing interleaving introduces; the error metrics report it. Each work group
-// reads its pixels' neighbourhood from the G-buffer and the atlas once, into shared memory.
+// This is the smoothing interleaving introduces; the error metrics report it.
 // Inputs: tile atlas (unit 5), G-buffer (units 0..4). Output: indirect target (rgba16f).
 
 #include "include/gbuffer.glsl"
 #include "include/lgh_shading.glsl"
 
-#define GROUP 8
-#define HALO 3  // uInterleave - 1 for the largest interleaving, 4x4
-#define SIDE (GROUP + 2 * HALO)
-layout(local_size_x = GROUP, local_size_y = GROUP) in;
+layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(binding = LGH_UNIT_PASS_INPUT) uniform sampler2D uAtlas;
 layout(rgba16f, binding = LGH_IMAGE_OUTPUT) uniform writeonly image2D uOutput;
@@ -28,38 +24,11 @@ uniform float uPixelFootprint;  // world size of one pixel at unit distance from
 const float kNormalPower = 16.0;
 const float kMinWeight = 1e-4;
 
-// The work group's pixels and every neighbour they reach, read once: each pixel's estimate visits
-// (2n - 1)^2 neighbours, which would otherwise each be a G-buffer read.
-shared vec4 sPosition[SIDE * SIDE];  // w: 1 where in the frame and drawn
-shared vec3 sNormal[SIDE * SIDE];
-shared vec3 sReflectance[SIDE * SIDE];
-shared vec3 sAtlas[SIDE * SIDE];
-
 vec3 reflectance(SurfacePoint s) { return max(s.baseColor, vec3(0.02)); }
 
-ivec2 neighbourhoodOrigin() { return ivec2(gl_WorkGroupID.xy) * GROUP - HALO; }
-
-void loadNeighbourhood() {
-  ivec2 origin = neighbourhoodOrigin();
-  for (uint i = gl_LocalInvocationIndex; i < uint(SIDE * SIDE); i += uint(GROUP * GROUP)) {
-    ivec2 q = origin + ivec2(int(i) % SIDE, int(i) / SIDE);
-    SurfacePoint s;
-    if (lghInFrame(q) && readSurface(q, s)) {
-      sPosition[i] = vec4(s.position, 1.0);
-      sNormal[i] = s.normal;
-      sReflectance[i] = reflectance(s);
-      sAtlas[i] = texelFetch(uAtlas, lghAtlasPixel(q), 0).rgb;
-    } else {
-      sPosition[i] = vec4(0.0);
-    }
-  }
-  memoryBarrierShared();
-  barrier();
-}
-
-float geometryWeight(SurfacePoint p, int q, float planeSigma) {
-  float facing = pow(max(dot(p.normal, sNormal[q]), 0.0), kNormalPower);
-  float planeDistance = dot(p.normal, sPosition[q].xyz - p.position) / planeSigma;
+float geometryWeight(SurfacePoint p, SurfacePoint q, float planeSigma) {
+  float facing = pow(max(dot(p.normal, q.normal), 0.0), kNormalPower);
+  float planeDistance = dot(p.normal, q.position - p.position) / planeSigma;
   return facing * exp(-planeDistance * planeDistance);
 }
 
@@ -72,17 +41,16 @@ int firstOfResidue(int from, int residue) {
 bool tileEstimate(ivec2 pixel, SurfacePoint p, ivec2 tile, float planeSigma, out vec3 estimate) {
   int reach = uInterleave - 1;
   ivec2 first = ivec2(firstOfResidue(pixel.x - reach, tile.x), firstOfResidue(pixel.y - reach, tile.y));
-  ivec2 origin = neighbourhoodOrigin();
   vec3 sum = vec3(0.0);
   float weightSum = 0.0;
   for (int y = first.y; y <= pixel.y + reach; y += uInterleave) {
     for (int x = first.x; x <= pixel.x + reach; x += uInterleave) {
       ivec2 q = ivec2(x, y);
-      int cell = (q.y - origin.y) * SIDE + (q.x - origin.x);
-      if (sPosition[cell].w < 0.5) continue;
+      SurfacePoint neighbour;
+      if (!lghInFrame(q) || !readSurface(q, neighbour)) continue;
       vec2 tent = 1.0 - abs(vec2(q - pixel)) / float(uInterleave);
-      float w = tent.x * tent.y * geometryWeight(p, cell, planeSigma);
-      sum += w * sAtlas[cell] / sReflectance[cell];
+      float w = tent.x * tent.y * geometryWeight(p, neighbour, planeSigma);
+      sum += w * texelFetch(uAtlas, lghAtlasPixel(q), 0).rgb / reflectance(neighbour);
       weightSum += w;
     }
   }
@@ -91,7 +59,6 @@ bool tileEstimate(ivec2 pixel, SurfacePoint p, ivec2 tile, float planeSigma, out
 }
 
 void main() {
-  loadNeighbourhood();  // before any invocation leaves: every one takes part in the barrier
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (!lghInFrame(pixel)) return;
   SurfacePoint p;
