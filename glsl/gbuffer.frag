@@ -9,6 +9,11 @@
 
 in VertexData { GBUFFER_VERTEX_MEMBERS } vin;
 
+#if !LGH_MATERIAL_HAS(LGH_MATERIAL_DISCARD)
+// Nothing discards: the depth test may run before the shader, so hidden fragments cost nothing.
+layout(early_fragment_tests) in;
+#endif
+
 uniform bool uPointDisk;  // points: cut the square to a disk
 
 layout(location = 0) out vec4 outPosition;
@@ -23,14 +28,18 @@ void main() {
                                          vin.tangent, vin.uv0, vin.uv1, vin.color,
                                          vin.diffuseLight, vin.specularLight);
   Derivatives derivatives = screenDerivatives(inputs);
+#if LGH_MATERIAL_HAS(LGH_MATERIAL_DISCARD)
   if (uPointDisk && dot(vin.sprite, vin.sprite) > 1.0) discard;
+#endif
   MaterialSample m = sampleMaterial(inputs, derivatives);
+#if LGH_MATERIAL_HAS(LGH_MATERIAL_DISCARD)
   if (m.discarded) discard;
+#endif
   SurfacePoint s = m.surface;
   outPosition = vec4(vin.worldPosition, 1.0 + float(s.selfShadowMask));
   outNormal = vec4(s.normal, 0.0);
   outAlbedo = vec4(s.baseColor, s.occlusion);
-  bool classic = isClassicModel(s.model);
+  bool classic = LGH_MATERIAL_HAS(LGH_MATERIAL_CLASSIC) && isClassicModel(s.model);
   outMaterial = vec4(classic ? 0.0 : s.metallic, classic ? 0.0 : s.roughness,
                      float(s.model) / 255.0, float(m.flags) / 255.0);
   outEmissive = vec4(m.emissive, 0.0);

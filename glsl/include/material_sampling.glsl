@@ -10,6 +10,20 @@
 #ifndef LGH_MATERIAL_SAMPLING_GLSL
 #define LGH_MATERIAL_SAMPLING_GLSL
 
+// What the draw's material can need, known when the program is built (SurfaceProgramKey::features
+// in renderer/src/passes/surface_programs.hpp): code for a feature the material lacks is compiled
+// out, so that the shader holds fewer registers and, without a discard, its depth test runs
+// before it. Unset: every feature (the generic shader, as the forward pass uses it).
+#define LGH_MATERIAL_DISCARD 1  // the alpha test, relief silhouettes, point disks
+#define LGH_MATERIAL_HEIGHT 2   // bump, parallax, relief mapping, displacement
+#define LGH_MATERIAL_LAYERS 4   // KHR_materials_* layers of metallic-roughness
+#define LGH_MATERIAL_CLASSIC 8  // the lecture's models (Phong and up), Gouraud and flat shading
+#define LGH_MATERIAL_BICUBIC 16 // the shader's bicubic texture filter
+#ifndef LGH_MATERIAL_FEATURES
+#define LGH_MATERIAL_FEATURES 31
+#endif
+#define LGH_MATERIAL_HAS(feature) ((LGH_MATERIAL_FEATURES & (feature)) != 0)
+
 #define LGH_LIGHTS_BUFFER
 #include "include/common.glsl"
 #include "include/gbuffer_encoding.glsl"
@@ -139,7 +153,10 @@ vec4 sampleBicubic(sampler2D map, vec2 uv) {
   return lod > 0.0 ? mix(result, texture(map, uv), lod) : result;
 }
 
-vec4 sampleMap(sampler2D map, vec2 uv) { return uBicubic ? sampleBicubic(map, uv) : texture(map, uv); }
+vec4 sampleMap(sampler2D map, vec2 uv) {
+  return LGH_MATERIAL_HAS(LGH_MATERIAL_BICUBIC) && uBicubic ? sampleBicubic(map, uv)
+                                                           : texture(map, uv);
+}
 
 // The material's current texture coordinates: parallax and relief mapping move them.
 struct Uvs {
@@ -395,7 +412,7 @@ MaterialSample sampleMaterial(FragmentInputs f, Derivatives d) {
   if (dot(geometric, toViewer) < 0.0) geometric = -geometric;
 
   Uvs uvs = Uvs(f.uv0, f.uv1);
-  bool height = hasTexture(SLOT_HEIGHT);
+  bool height = LGH_MATERIAL_HAS(LGH_MATERIAL_HEIGHT) && hasTexture(SLOT_HEIGHT);
   int heightSet = heightUvSet();
   TangentFrame frame = tangentFrame(f, d, geometric, hasTexture(SLOT_NORMAL) && slotUsesUv1(SLOT_NORMAL) ? 1 : heightSet);
   mat2 heightTransform = mat2(uUvTransform[SLOT_HEIGHT][0], uUvTransform[SLOT_HEIGHT][1]);
@@ -412,7 +429,7 @@ MaterialSample sampleMaterial(FragmentInputs f, Derivatives d) {
     } else {
       reliefHit = reliefIntersection(viewTangent, heightUv, gradX, gradY);
       offset = reliefHit.xy - heightUv;
-      if (uReliefSilhouettes && (any(lessThan(reliefHit.xy, vec2(0.0))) ||
+      if (LGH_MATERIAL_HAS(LGH_MATERIAL_DISCARD) && uReliefSilhouettes && (any(lessThan(reliefHit.xy, vec2(0.0))) ||
                                  any(greaterThan(reliefHit.xy, vec2(1.0))))) {
         result.discarded = true;
       }
@@ -431,7 +448,10 @@ MaterialSample sampleMaterial(FragmentInputs f, Derivatives d) {
   vec4 baseColor = uBaseColorFactor * f.color;
   if (hasTexture(SLOT_BASE_COLOR)) baseColor *= sampleSlot(SLOT_BASE_COLOR, uBaseColorTexture, uvs);
   result.alpha = baseColor.a;
-  if (uAlphaCutoff >= 0.0 && baseColor.a < uAlphaCutoff) result.discarded = true;
+  if (LGH_MATERIAL_HAS(LGH_MATERIAL_DISCARD) && uAlphaCutoff >= 0.0 &&
+      baseColor.a < uAlphaCutoff) {
+    result.discarded = true;
+  }
 
   vec3 n = geometric;
   bool normalMap = hasTexture(SLOT_NORMAL) && uSurface != SURFACE_NONE && uSurface != SURFACE_BUMP &&
@@ -471,7 +491,7 @@ MaterialSample sampleMaterial(FragmentInputs f, Derivatives d) {
                 uLightMapStrength;
   }
   result.flags = 0u;
-  if (isClassicModel(uModel)) {
+  if (LGH_MATERIAL_HAS(LGH_MATERIAL_CLASSIC) && isClassicModel(uModel)) {
     s.ambientColor = uAmbientIsDiffuse ? s.baseColor : uAmbientColor;
     vec3 specularMap = sampleColor(SLOT_SPECULAR_COLOR, uSpecularColorTexture, uvs);
     s.specularColor = uSpecularColor * specularMap;
@@ -491,7 +511,9 @@ MaterialSample sampleMaterial(FragmentInputs f, Derivatives d) {
   } else if (uModel == MATERIAL_MODEL_METALLIC_ROUGHNESS) {
     s.layers = uLayers;
     result.flags = uLayers;
-    if (uLayers != 0u) sampleLayers(geometric, frame, uvs, s);
+    if (LGH_MATERIAL_HAS(LGH_MATERIAL_LAYERS) && uLayers != 0u) {
+      sampleLayers(geometric, frame, uvs, s);
+    }
   }
   if (height && uSurface == SURFACE_RELIEF && uReliefSelfShadow) {
     s.selfShadowMask = reliefSelfShadowMask(reliefHit, frame, f.position, gradX, gradY);

@@ -11,6 +11,7 @@
 
 #include "lgh/request.hpp"
 #include "passes/brdf_features.hpp"
+#include "passes/material_binding.hpp"
 #include "scene/demo_scene.hpp"
 #include "scene/material_table.hpp"
 
@@ -179,6 +180,35 @@ TEST(BrdfFeatures, EmissionFromAFactorALightMapOrAnUnlitSurface) {
   EXPECT_TRUE(emits(scene, items));
   scene.materials[static_cast<std::size_t>(materialIndex(scene, "white"))].lightMap.image = 0;
   EXPECT_TRUE(emits(scene, drawItemsOf(scene)));
+}
+
+// The G-buffer shader is compiled without the code a draw's material cannot need (and without a
+// discard, so that its depth test runs first): every feature the material uses must be in its key.
+TEST(MaterialFeatures, EachFeatureComesFromWhatTheMaterialUses) {
+  lgh::GpuScene::DrawItem item{};
+  lgh::Material plain;
+  EXPECT_EQ(lgh::materialFeatures(plain, item), 0U);
+  lgh::Material masked = plain;
+  masked.alphaMode = lgh::AlphaMode::Mask;
+  EXPECT_EQ(lgh::materialFeatures(masked, item), lgh::kMaterialDiscard);
+  lgh::Material relief = plain;
+  relief.surface.technique = lgh::SurfaceDetail::Relief;
+  relief.surface.heightTexture.image = 0;
+  relief.surface.reliefSilhouettes = true;
+  EXPECT_EQ(lgh::materialFeatures(relief, item), lgh::kMaterialDiscard | lgh::kMaterialHeight);
+  relief.surface.reliefSilhouettes = false;
+  EXPECT_EQ(lgh::materialFeatures(relief, item), lgh::kMaterialHeight);
+  lgh::Material coated = plain;
+  coated.clearcoat.factor = 0.5F;
+  EXPECT_EQ(lgh::materialFeatures(coated, item), lgh::kMaterialLayers);
+  lgh::Material phong = coated;  // a classic model's layers are never read
+  phong.model = MaterialModel::Phong;
+  EXPECT_EQ(lgh::materialFeatures(phong, item), lgh::kMaterialClassic);
+  lgh::Material bicubic = plain;
+  bicubic.bicubic = true;
+  EXPECT_EQ(lgh::materialFeatures(bicubic, item), lgh::kMaterialBicubic);
+  item.topology = lgh::Topology::Points;  // cut to disks
+  EXPECT_EQ(lgh::materialFeatures(plain, item), lgh::kMaterialDiscard);
 }
 
 }  // namespace

@@ -99,11 +99,30 @@ MaterialModel effectiveModel(const Material& material, bool unlit) {
   return unlit ? MaterialModel::Unlit : material.model;
 }
 
+std::uint32_t materialFeatures(const Material& material, const GpuScene::DrawItem& item) {
+  const MaterialModel model = effectiveModel(material, item.unlit);
+  const SurfaceDetailMaterial& surface = material.surface;
+  std::uint32_t features = 0U;
+  const bool silhouettes = surface.usesHeight() && surface.technique == SurfaceDetail::Relief &&
+                           surface.reliefSilhouettes;
+  if (material.alphaMode == AlphaMode::Mask || silhouettes || item.topology == Topology::Points) {
+    features |= kMaterialDiscard;
+  }
+  if (surface.usesHeight()) features |= kMaterialHeight;
+  if (model == MaterialModel::MetallicRoughness && materialLayerBits(material) != 0U) {
+    features |= kMaterialLayers;
+  }
+  if (isClassicModel(model)) features |= kMaterialClassic;
+  if (material.bicubic) features |= kMaterialBicubic;
+  return features;
+}
+
 SurfaceProgramKey surfaceProgramKey(const Material& material, const GpuScene::DrawItem& item,
                                     bool forward) {
   SurfaceProgramKey key;
   key.topology = item.topology;
   key.forward = forward;
+  if (!forward) key.features = materialFeatures(material, item);
   if (item.topology != Topology::Triangles) return key;
   if (isClassicModel(effectiveModel(material, item.unlit))) key.shading = material.classic.shading;
   key.displaced = displacedMaterial(material);

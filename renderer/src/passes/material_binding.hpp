@@ -4,6 +4,8 @@
 // one draw call.
 #pragma once
 
+#include <cstdint>
+
 #include "lgh/request.hpp"
 #include "passes/surface_programs.hpp"
 #include "scene/camera.hpp"
@@ -14,6 +16,9 @@ namespace lgh {
 // The model a draw shades with: lines and points without normals are unlit whatever their
 // material says.
 MaterialModel effectiveModel(const Material& material, bool unlit);
+
+// The kMaterial* features (passes/surface_programs.hpp) the G-buffer shader needs for this draw.
+std::uint32_t materialFeatures(const Material& material, const GpuScene::DrawItem& item);
 
 SurfaceProgramKey surfaceProgramKey(const Material& material, const GpuScene::DrawItem& item,
                                     bool forward);

@@ -1,5 +1,6 @@
 #include "passes/surface_programs.hpp"
 
+#include <string>
 #include <vector>
 
 #include "gl/shader_library.hpp"
@@ -10,6 +11,9 @@ GLuint SurfacePrograms::get(const SurfaceProgramKey& key) {
   if (const auto it = programs_.find(key); it != programs_.end()) return it->second.id();
   std::vector<gl::ShaderStage> stages{{GL_VERTEX_SHADER, "gbuffer.vert"}};
   std::string defines;
+  if (key.features != kAllMaterialFeatures) {
+    defines += "#define LGH_MATERIAL_FEATURES " + std::to_string(key.features) + "\n";
+  }
   const bool triangles = key.topology == Topology::Triangles;
   if (triangles && key.shading == ShadingMode::Gouraud) defines += "#define LGH_GOURAUD\n";
   if (triangles && key.displaced) {

@@ -5,9 +5,12 @@
 //             (gbuffer_flat.geom lights each triangle)
 //   displaced displacement mapping (gbuffer_displace.tesc/.tese, drawn as GL_PATCHES)
 //   forward   gbuffer.frag or forward_blend.frag
+//   features  what the material can need (LGH_MATERIAL_FEATURES of
+//             glsl/include/material_sampling.glsl); the forward pass keeps the generic shader
 // built on first use: most frames need two or three of them.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <tuple>
 
@@ -17,14 +20,23 @@
 
 namespace lgh {
 
+// The LGH_MATERIAL_* bits of glsl/include/material_sampling.glsl.
+inline constexpr std::uint32_t kMaterialDiscard = 1U;
+inline constexpr std::uint32_t kMaterialHeight = 2U;
+inline constexpr std::uint32_t kMaterialLayers = 4U;
+inline constexpr std::uint32_t kMaterialClassic = 8U;
+inline constexpr std::uint32_t kMaterialBicubic = 16U;
+inline constexpr std::uint32_t kAllMaterialFeatures = 31U;
+
 struct SurfaceProgramKey {
   Topology topology = Topology::Triangles;
   ShadingMode shading = ShadingMode::Pixel;
   bool displaced = false;
   bool forward = false;
+  std::uint32_t features = kAllMaterialFeatures;
   bool operator<(const SurfaceProgramKey& other) const {
-    return std::tie(topology, shading, displaced, forward) <
-           std::tie(other.topology, other.shading, other.displaced, other.forward);
+    return std::tie(topology, shading, displaced, forward, features) <
+           std::tie(other.topology, other.shading, other.displaced, other.forward, other.features);
   }
 };
 
