@@ -112,9 +112,8 @@ VplLayout VplTracer::generate(const VplTracingInputs& inputs, const CachedScene&
   lights_.reserve(inputs.lights.size());
   for (const LightDesc& light : inputs.lights) lights_.push_back(packLight(light));
   const GLuint shared = session.vpls->prepare(static_cast<std::uint32_t>(layout.count));
-  transferMs_ += tracing.traceLightPaths(
-      session, geometry.lightPathScene(),
-      lightPathBatch(settings, layout, table, lights_, scene));
+  transferMs_ += tracing.traceLightPaths(session, geometry.lightPathScene(),
+                                         lightPathBatch(settings, layout, table, lights_, scene));
   traced_ = true;
   bounces_ = settings.bounces;
   // Into the buffer the LGH build reads: a GPU copy (the shared buffer is the tracer's).

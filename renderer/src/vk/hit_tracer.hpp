@@ -43,7 +43,6 @@ class HitTracer {
   const TraceRecorder& recorder(TracePath path) const;
 
  private:
-
   const VulkanDevice* device_;
   TraceLayout layout_;
   std::unique_ptr<TraceRecorder> rayQuery_;

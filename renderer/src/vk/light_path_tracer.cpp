@@ -50,10 +50,10 @@ constexpr std::uint32_t kTimestamps = 2 + 2 * kMaxLightPathBounces;
 
 // The set's storage buffers: the GI bindings of include/slots.glsl, as the GL kernels had them.
 constexpr std::array<std::uint32_t, 12> kBindings{
-    LGH_BIND_GI_RAYS,      LGH_BIND_GI_HITS,      LGH_BIND_GI_VERTICES,
+    LGH_BIND_GI_RAYS,      LGH_BIND_GI_HITS,       LGH_BIND_GI_VERTICES,
     LGH_BIND_GI_INDICES,   LGH_BIND_GI_GEOMETRIES, LGH_BIND_GI_INSTANCES,
-    LGH_BIND_GI_MATERIALS, LGH_BIND_GI_SOURCES,   LGH_BIND_GI_PATHS,
-    LGH_BIND_GI_VPLS,      LGH_BIND_GI_LIGHTS,    LGH_BIND_GI_ALBEDO_TEXELS};
+    LGH_BIND_GI_MATERIALS, LGH_BIND_GI_SOURCES,    LGH_BIND_GI_PATHS,
+    LGH_BIND_GI_VPLS,      LGH_BIND_GI_LIGHTS,     LGH_BIND_GI_ALBEDO_TEXELS};
 
 ::vk::raii::DescriptorSetLayout createSetLayout(const ::vk::raii::Device& device) {
   std::vector<::vk::DescriptorSetLayoutBinding> bindings;
@@ -82,9 +82,9 @@ constexpr std::array<std::uint32_t, 12> kBindings{
 }
 
 ::vk::raii::DescriptorPool createPool(const ::vk::raii::Device& device) {
-  const ::vk::DescriptorPoolSize size{.type = ::vk::DescriptorType::eStorageBuffer,
-                                      .descriptorCount =
-                                          static_cast<std::uint32_t>(kBindings.size())};
+  const ::vk::DescriptorPoolSize size{
+      .type = ::vk::DescriptorType::eStorageBuffer,
+      .descriptorCount = static_cast<std::uint32_t>(kBindings.size())};
   return {device, ::vk::DescriptorPoolCreateInfo{
                       .flags = ::vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet,
                       .maxSets = 1,
@@ -97,19 +97,18 @@ constexpr std::array<std::uint32_t, 12> kBindings{
                                            std::span<const std::uint32_t> code) {
   const ::vk::raii::ShaderModule shader = createShaderModule(device, code);
   return {device.device(), nullptr,
-          ::vk::ComputePipelineCreateInfo{
-              .stage = {.stage = ::vk::ShaderStageFlagBits::eCompute,
-                        .module = *shader,
-                        .pName = "main"},
-              .layout = *layout}};
+          ::vk::ComputePipelineCreateInfo{.stage = {.stage = ::vk::ShaderStageFlagBits::eCompute,
+                                                    .module = *shader,
+                                                    .pName = "main"},
+                                          .layout = *layout}};
 }
 
 DeviceBuffer deviceLocal(const VulkanDevice& device, ::vk::DeviceSize size) {
-  return {device,
-          {.size = std::max(size, kMinBytes),
-           .usage = ::vk::BufferUsageFlagBits::eStorageBuffer |
-                    ::vk::BufferUsageFlagBits::eTransferDst,
-           .memory = MemoryKind::DeviceLocal}};
+  return {
+      device,
+      {.size = std::max(size, kMinBytes),
+       .usage = ::vk::BufferUsageFlagBits::eStorageBuffer | ::vk::BufferUsageFlagBits::eTransferDst,
+       .memory = MemoryKind::DeviceLocal}};
 }
 
 // A global barrier: what `from` wrote becomes visible to `to`.
@@ -123,15 +122,15 @@ void memoryBarrier(const ::vk::raii::CommandBuffer& commands, ::vk::PipelineStag
 // The VPL buffer handed between GL (the external queue family) and this queue.
 void transferVpls(const ::vk::raii::CommandBuffer& commands, ::vk::Buffer vpls,
                   ::vk::PipelineStageFlags from, ::vk::AccessFlags written,
-                  ::vk::PipelineStageFlags to, ::vk::AccessFlags access,
-                  std::uint32_t fromFamily, std::uint32_t toFamily) {
+                  ::vk::PipelineStageFlags to, ::vk::AccessFlags access, std::uint32_t fromFamily,
+                  std::uint32_t toFamily) {
   const ::vk::BufferMemoryBarrier barrier{.srcAccessMask = written,
-                                         .dstAccessMask = access,
-                                         .srcQueueFamilyIndex = fromFamily,
-                                         .dstQueueFamilyIndex = toFamily,
-                                         .buffer = vpls,
-                                         .offset = 0,
-                                         .size = VK_WHOLE_SIZE};
+                                          .dstAccessMask = access,
+                                          .srcQueueFamilyIndex = fromFamily,
+                                          .dstQueueFamilyIndex = toFamily,
+                                          .buffer = vpls,
+                                          .offset = 0,
+                                          .size = VK_WHOLE_SIZE};
   commands.pipelineBarrier(from, to, {}, nullptr, barrier, nullptr);
 }
 
@@ -160,9 +159,9 @@ LightPathTracer::LightPathTracer(const VulkanDevice& device, const HitTracer& hi
       setLayout_(createSetLayout(device.device())),
       pipelineLayout_(createPipelineLayout(device.device(), setLayout_)),
       pool_(createPool(device.device())),
-      sets_(device.device(), ::vk::DescriptorSetAllocateInfo{.descriptorPool = *pool_,
-                                                             .descriptorSetCount = 1,
-                                                             .pSetLayouts = &*setLayout_}),
+      sets_(device.device(),
+            ::vk::DescriptorSetAllocateInfo{
+                .descriptorPool = *pool_, .descriptorSetCount = 1, .pSetLayouts = &*setLayout_}),
       emit_(createComputePipeline(device, pipelineLayout_, spirv::gi_emit_comp())),
       bounce_(createComputePipeline(device, pipelineLayout_, spirv::gi_bounce_comp())),
       traceLayout_(createHitTraceLayout(device, traceStages, 1)),
@@ -262,14 +261,14 @@ void LightPathTracer::prepare(const LightPathScene& surfaces, const LightPathBat
     const ::vk::DeviceSize sources = std::max(sourceBytes, inputs_ ? inputs_->sourceBytes : 0);
     const ::vk::DeviceSize lights = std::max(lightBytes, inputs_ ? inputs_->lightBytes : 0);
     inputs_.reset();
-    inputs_.emplace(Inputs{.sourceBytes = sources,
-                           .lightBytes = lights,
-                           .staging = DeviceBuffer(*device_,
-                                                   {.size = sources + lights,
-                                                    .usage = ::vk::BufferUsageFlagBits::eTransferSrc,
-                                                    .memory = MemoryKind::HostVisible}),
-                           .sources = deviceLocal(*device_, sources),
-                           .lights = deviceLocal(*device_, lights)});
+    inputs_.emplace(
+        Inputs{.sourceBytes = sources,
+               .lightBytes = lights,
+               .staging = DeviceBuffer(*device_, {.size = sources + lights,
+                                                  .usage = ::vk::BufferUsageFlagBits::eTransferSrc,
+                                                  .memory = MemoryKind::HostVisible}),
+               .sources = deviceLocal(*device_, sources),
+               .lights = deviceLocal(*device_, lights)});
   }
   if (!batch.sources.empty()) {
     std::memcpy(inputs_->staging.mapped(), batch.sources.data(), batch.sources.size());
@@ -283,16 +282,24 @@ void LightPathTracer::prepare(const LightPathScene& surfaces, const LightPathBat
 void LightPathTracer::writeSets(const AccelerationScene& scene) const {
   const auto surfaces = surfaces_->buffers();
   // In kBindings' order.
-  const std::array<::vk::Buffer, kBindings.size()> buffers{
-      working_->rays.handle(),  working_->hits.handle(),   surfaces[0],
-      surfaces[1],              surfaces[2],               surfaces[3],
-      surfaces[4],              inputs_->sources.handle(), working_->states.handle(),
-      vpls_->handle(),          inputs_->lights.handle(),  surfaces[5]};
+  const std::array<::vk::Buffer, kBindings.size()> buffers{working_->rays.handle(),
+                                                           working_->hits.handle(),
+                                                           surfaces[0],
+                                                           surfaces[1],
+                                                           surfaces[2],
+                                                           surfaces[3],
+                                                           surfaces[4],
+                                                           inputs_->sources.handle(),
+                                                           working_->states.handle(),
+                                                           vpls_->handle(),
+                                                           inputs_->lights.handle(),
+                                                           surfaces[5]};
   std::array<::vk::DescriptorBufferInfo, kBindings.size()> infos{};
   std::array<::vk::WriteDescriptorSet, kBindings.size()> writes{};
   const ::vk::DescriptorSet set = *sets_[0];
   for (std::size_t i = 0; i < kBindings.size(); ++i) {
-    infos[i] = ::vk::DescriptorBufferInfo{.buffer = buffers[i], .offset = 0, .range = VK_WHOLE_SIZE};
+    infos[i] =
+        ::vk::DescriptorBufferInfo{.buffer = buffers[i], .offset = 0, .range = VK_WHOLE_SIZE};
     writes[i] = ::vk::WriteDescriptorSet{.dstSet = set,
                                          .dstBinding = kBindings[i],
                                          .descriptorCount = 1,
@@ -323,14 +330,15 @@ void LightPathTracer::record(const TraceRecorder& recorder, const LightPathBatch
                  device_->queueFamily());
   }
   if (!batch.sources.empty()) {
-    commands.copyBuffer(inputs_->staging.handle(), inputs_->sources.handle(),
-                        ::vk::BufferCopy{.srcOffset = 0, .dstOffset = 0, .size = batch.sources.size()});
+    commands.copyBuffer(
+        inputs_->staging.handle(), inputs_->sources.handle(),
+        ::vk::BufferCopy{.srcOffset = 0, .dstOffset = 0, .size = batch.sources.size()});
   }
   if (!batch.lights.empty()) {
-    commands.copyBuffer(inputs_->staging.handle(), inputs_->lights.handle(),
-                        ::vk::BufferCopy{.srcOffset = inputs_->sourceBytes,
-                                         .dstOffset = 0,
-                                         .size = batch.lights.size()});
+    commands.copyBuffer(
+        inputs_->staging.handle(), inputs_->lights.handle(),
+        ::vk::BufferCopy{
+            .srcOffset = inputs_->sourceBytes, .dstOffset = 0, .size = batch.lights.size()});
   }
   const ::vk::DeviceSize written =
       ::vk::DeviceSize{batch.paths} * (batch.bounces + (batch.emissionSlot ? 1U : 0U)) * kVplBytes;
@@ -418,13 +426,15 @@ void LightPathTracer::retire() {
   banked_.traced = true;
   if (!queries_) return;
   const std::uint32_t count = 2 + 2 * inFlightBounces_;
-  const auto [result, ticks] = queries_->getResults<std::uint64_t>(
+  const auto results = queries_->getResults<std::uint64_t>(
       0, count, count * sizeof(std::uint64_t), sizeof(std::uint64_t),
       ::vk::QueryResultFlagBits::e64 | ::vk::QueryResultFlagBits::eWait);
-  if (result != ::vk::Result::eSuccess) return;
+  if (results.first != ::vk::Result::eSuccess) return;
+  const std::vector<std::uint64_t>& ticks = results.second;
   const auto ms = [&](std::uint32_t from, std::uint32_t to) {
-    return ticks[to] < ticks[from] ? 0.0
-                                   : static_cast<double>(ticks[to] - ticks[from]) * periodNs_ * 1e-6;
+    return ticks[to] < ticks[from]
+               ? 0.0
+               : static_cast<double>(ticks[to] - ticks[from]) * periodNs_ * 1e-6;
   };
   banked_.totalMs += ms(0, count - 1);
   banked_.emitMs += ms(0, 1);
