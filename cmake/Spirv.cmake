@@ -1,6 +1,7 @@
 # lgh_embed_spirv(TARGET target NAMESPACE ns SOURCES shader...)
 # Compiles each Vulkan GLSL shader to SPIR-V with glslc at build time (--target-env=vulkan1.2 -O;
-# #include dependencies tracked through glslc's depfile) and adds to `target` a generated C++
+# #include dependencies tracked through glslc's depfile; includes found beside the shader, else
+# from glsl/ as the GL shaders name them: "include/...") and adds to `target` a generated C++
 # source that holds it: `std::span<const std::uint32_t> ns::<file name as a C identifier>()`,
 # e.g. shadow_ray.rgen -> ns::shadow_ray_rgen(). The binaries carry their SPIR-V with them.
 function(lgh_embed_spirv)
@@ -13,7 +14,7 @@ function(lgh_embed_spirv)
     set(output "${CMAKE_CURRENT_BINARY_DIR}/spirv/${name}.cpp")
     add_custom_command(
       OUTPUT "${spirv}"
-      COMMAND ${LGH_GLSLC} --target-env=vulkan1.2 -O -MD -MF "${spirv}.d" -o "${spirv}" "${source}"
+      COMMAND ${LGH_GLSLC} --target-env=vulkan1.2 -O -I ${PROJECT_SOURCE_DIR}/glsl -MD -MF "${spirv}.d" -o "${spirv}" "${source}"
       DEPENDS "${source}"
       DEPFILE "${spirv}.d"
       COMMENT "glslc ${name}"

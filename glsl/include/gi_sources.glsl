@@ -26,10 +26,14 @@ struct GiSource {  // 112 bytes
 layout(std430, binding = LGH_BIND_GI_SOURCES) readonly buffer GiSources { GiSource giSources[]; };
 layout(std430, binding = LGH_BIND_GI_LIGHTS) readonly buffer GiFrameLights { Light giLights[]; };
 
+// Vulkan (the light paths, glsl/vk/gi_*.comp): the same names are members of the push-constant
+// block of glsl/vk/include/light_path_constants.glsl, included before this file.
+#ifndef VULKAN
 uniform uint uSourceCount;
 uniform vec4 uSceneSphere;  // xyz: centre, w: radius of the scene's bounding sphere
 uniform vec3 uSceneMin;     // the scene's bounding box
 uniform vec3 uSceneMax;
+#endif
 
 // Directional lights shine onto the scene's bounding box: their paths start on the faces of the box
 // that face the light (by projected area), moved this far upstream (in sphere radii) so that every

@@ -44,6 +44,7 @@
 #define LGH_BIND_GI_LIGHTS 10     // the frame's analytic lights (include/lights.glsl)
 #define LGH_BIND_GI_RADIANCE 11   // the reference's accumulated radiance, vec4 per pixel
 #define LGH_UNIT_GI_ALBEDO 6      // base-colour textures, downsampled into one array
+#define LGH_BIND_GI_ALBEDO_TEXELS 12  // Vulkan's light paths: the same array as texels (gi_material.glsl)
 
 // ---- the LGH build (include/lgh_types.glsl, LGH_BUILD_INTERNALS) --------------------------------
 #define LGH_BIND_BUILD_LIGHTS 0

@@ -114,15 +114,19 @@ AlbedoArray::AlbedoArray(const Scene& scene, const std::vector<Material>& materi
   glTextureStorage3D(texture_.id(), mipLevels(kAlbedoSize), GL_SRGB8_ALPHA8, kAlbedoSize,
                      kAlbedoSize, layers);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  constexpr std::size_t kLayerBytes = std::size_t{kAlbedoSize} * kAlbedoSize * 4;
+  texels_.reserve(kLayerBytes * static_cast<std::size_t>(layers));
   for (std::size_t layer = 0; layer < images.size(); ++layer) {
     const Image8 resized =
         resampleImage(scene.images[static_cast<std::size_t>(images[layer])], kAlbedoSize);
     glTextureSubImage3D(texture_.id(), 0, 0, 0, static_cast<GLint>(layer), kAlbedoSize, kAlbedoSize,
                         1, GL_RGBA, GL_UNSIGNED_BYTE, resized.pixels.data());
+    texels_.insert(texels_.end(), resized.pixels.begin(), resized.pixels.end());
   }
   if (images.empty()) {
     const std::array<std::uint8_t, 4> white{255, 255, 255, 255};
     glClearTexImage(texture_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, white.data());
+    texels_.assign(kLayerBytes, 255);
   }
   glGenerateTextureMipmap(texture_.id());
   glSamplerParameteri(sampler_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);

@@ -7,6 +7,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -35,9 +37,13 @@ class AlbedoArray {
   GLuint texture() const { return texture_.id(); }
   GLuint sampler() const { return sampler_.id(); }
   std::size_t gpuBytes() const { return gpuBytes_; }
+  // Level 0 of every layer as the texture holds it (sRGB RGBA8, kAlbedoSize^2 per layer): what
+  // Vulkan's light paths read in place of the texture (glsl/include/gi_material.glsl).
+  std::span<const std::byte> texels() const { return std::as_bytes(std::span(texels_)); }
 
  private:
   std::vector<int> layerOfImage_;
+  std::vector<std::uint8_t> texels_;
   gl::Texture texture_{GL_TEXTURE_2D_ARRAY};
   gl::SamplerObject sampler_;
   std::size_t gpuBytes_ = 0;

@@ -24,14 +24,17 @@ GiTracing::Session GiTracing::begin(const CachedScene& scene, ShadowTracing requ
     session.scene = &device_->traceScene(scene, &session.asBuildMs);
     if (!transport_ || epoch_ != device_->epoch()) {
       transport_ = std::make_unique<HitBatchTransport>(*tracer);
+      vplTransport_ = std::make_unique<VplTransport>(*tracer);
       epoch_ = device_->epoch();
     }
   } catch (const Error& error) {
     transport_.reset();
+    vplTransport_.reset();
     device_->reset(error.message());
     throw;
   }
   session.transport = transport_.get();
+  session.vpls = vplTransport_.get();
   return session;
 }
 
@@ -40,9 +43,28 @@ double GiTracing::trace(const Session& session, const vk::HitBatchShape& shape) 
     return session.transport->trace(*session.scene, session.path, shape);
   } catch (const Error& error) {
     transport_.reset();
+    vplTransport_.reset();
     if (device_ != nullptr) device_->reset(error.message());
     throw;
   }
+}
+
+double GiTracing::traceLightPaths(const Session& session, const vk::LightPathScene& surfaces,
+                                  const vk::LightPathBatch& batch) {
+  try {
+    return session.vpls->trace(*session.scene, session.path, surfaces, batch);
+  } catch (const Error& error) {
+    transport_.reset();
+    vplTransport_.reset();
+    if (device_ != nullptr) device_->reset(error.message());
+    throw;
+  }
+}
+
+vk::LightPathTimings GiTracing::collectLightPathTimings() {
+  vk::ShadowTracer* tracer = device_ != nullptr ? device_->tracer() : nullptr;
+  if (tracer == nullptr || !vplTransport_) return {};
+  return tracer->collectLightPathTimings();
 }
 
 double GiTracing::collectGpuMs() {

@@ -1,7 +1,9 @@
-// The closest-hit side of a renderer, shared by the light paths (vpl_tracer.hpp) and the
-// path-traced reference (path_traced_reference.hpp): the ShadowDevice's Vulkan tracer, the scene's
-// acceleration structures on it, the tracing path, and the GL side of the tracer's hit buffers
-// (one per tracer: its semaphore pair is the tracer's). One per FramePipeline.
+// The ray-tracing side of GI, shared by the light paths (vpl_tracer.hpp) and the path-traced
+// reference (path_traced_reference.hpp): the ShadowDevice's Vulkan tracer, the scene's
+// acceleration structures on it, the tracing path, the GL side of the tracer's hit buffers (the
+// reference's closest-hit batches) and of its VPL buffer (the light paths, traced in one Vulkan
+// submission), one of each per tracer (their semaphore pairs are the tracer's). One per
+// FramePipeline.
 #pragma once
 
 #include <cstdint>
@@ -9,6 +11,7 @@
 #include <string>
 
 #include "gi/hit_batch_transport.hpp"
+#include "gi/vpl_transport.hpp"
 #include "lgh/request.hpp"
 #include "scene/scene_cache.hpp"
 #include "shadows/shadow_device.hpp"
@@ -26,6 +29,7 @@ class GiTracing {
     const vk::TraceScene* scene = nullptr;
     vk::TracePath path = vk::TracePath::RayQuery;
     HitBatchTransport* transport = nullptr;
+    VplTransport* vpls = nullptr;
     double asBuildMs = -1.0;  // >= 0: this session built the acceleration structures
   };
   // Everything a batch needs for `scene`. Throws lgh::Error(Unavailable) naming `field` when this
@@ -40,9 +44,17 @@ class GiTracing {
   // The Vulkan GPU time of the batches since the last call.
   double collectGpuMs();
 
+  // Generates the light paths' VPLs in the session's VPL buffer (one Vulkan submission), with the
+  // error handling of trace(). Returns the CPU milliseconds of the hand-over (VplTransport).
+  double traceLightPaths(const Session& session, const vk::LightPathScene& surfaces,
+                         const vk::LightPathBatch& batch);
+  // The Vulkan timings of the light paths since the last call.
+  vk::LightPathTimings collectLightPathTimings();
+
  private:
   ShadowDevice* device_;
   std::unique_ptr<HitBatchTransport> transport_;
+  std::unique_ptr<VplTransport> vplTransport_;
   std::uint64_t epoch_ = 0;  // the ShadowDevice epoch transport_ belongs to
 };
 

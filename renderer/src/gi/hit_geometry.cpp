@@ -1,6 +1,7 @@
 #include "gi/hit_geometry.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
 
@@ -14,6 +15,16 @@
 
 namespace lgh {
 namespace {
+
+std::uint64_t nextHitGeometryId() {
+  static std::atomic<std::uint64_t> next{1};
+  return next.fetch_add(1);
+}
+
+template <typename T>
+std::span<const std::byte> bytesOf(const std::vector<T>& values) {
+  return std::as_bytes(std::span(values));
+}
 
 // Layers of the albedo array at most: 256 x 256 RGBA with mipmaps is 350 KB a layer.
 constexpr int kMaxAlbedoLayers = 256;
@@ -105,10 +116,11 @@ HitGeometry::HitGeometry(const Scene& scene, const std::vector<Material>& materi
             glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &layers);
             return std::min(kMaxAlbedoLayers, std::max(layers, 1));
           }(),
-          warnings_) {
+          warnings_),
+      id_(nextHitGeometryId()) {
   const vk::PackedGeometry packed = vk::packGeometry(scene);
   triangles_ = packed.triangleCount;
-  const std::vector<HitVertexGpu> vertices = packVertices(scene, packed);
+  std::vector<HitVertexGpu> vertices = packVertices(scene, packed);
 
   std::vector<std::uint32_t> firstGeometryOfMesh(packed.meshes.size(), 0);
   std::vector<HitGeometryGpu> geometries;
@@ -154,6 +166,11 @@ HitGeometry::HitGeometry(const Scene& scene, const std::vector<Material>& materi
   upload(geometries_.id(), geometries.data(), geometries.size() * sizeof(HitGeometryGpu));
   upload(instances_.id(), instances.data(), instances.size() * sizeof(HitInstanceGpu));
   upload(materials_.id(), packedMaterials.data(), packedMaterials.size() * sizeof(GiMaterialGpu));
+  vertexArray_ = std::move(vertices);
+  indexArray_ = packed.indices;
+  geometryArray_ = std::move(geometries);
+  instanceArray_ = std::move(instances);
+  materialArray_ = std::move(packedMaterials);
   gpuBytes_ += albedo_.gpuBytes();
   spdlog::debug("gi: hit geometry of '{}': {} triangles, {} emissive, {:.1f} MB", scene.name,
                 triangles_, emissive_.size(), static_cast<double>(gpuBytes_) / 1e6);
@@ -165,6 +182,16 @@ void HitGeometry::upload(GLuint buffer, const void* data, std::size_t bytes) {
   glNamedBufferStorage(buffer, size, nullptr, GL_DYNAMIC_STORAGE_BIT);
   if (bytes > 0) glNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(bytes), data);
   gpuBytes_ += static_cast<std::size_t>(size);
+}
+
+vk::LightPathScene HitGeometry::lightPathScene() const {
+  return {.id = id_,
+          .vertices = bytesOf(vertexArray_),
+          .indices = bytesOf(indexArray_),
+          .geometries = bytesOf(geometryArray_),
+          .instances = bytesOf(instanceArray_),
+          .materials = bytesOf(materialArray_),
+          .albedoTexels = albedo_.texels()};
 }
 
 bool HitGeometry::builtWith(const std::vector<Material>& materials) const {

@@ -18,8 +18,10 @@
 #include <glm/glm.hpp>
 
 #include "gi/albedo_array.hpp"
+#include "gi/gi_material.hpp"
 #include "gl/gl_objects.hpp"
 #include "scene/scene_cache.hpp"
+#include "vk/shadow_tracer.hpp"
 
 namespace lgh {
 
@@ -70,6 +72,11 @@ class HitGeometry final : public SceneAttachment {
   // Unbinds the albedo array's sampler (texture units are shared with other passes).
   static void unbind();
 
+  // The same arrays for Vulkan's light paths (vk/shadow_tracer.hpp, LightPathScene): kept on
+  // the CPU beside the GL buffers, so that a new tracer (after a device reset) can upload them
+  // again; the id is this object's, unique in the process.
+  vk::LightPathScene lightPathScene() const;
+
   const std::vector<EmissiveTriangle>& emissiveTriangles() const { return emissive_; }
   const std::vector<std::string>& warnings() const { return warnings_; }
   std::size_t triangleCount() const { return triangles_; }
@@ -87,6 +94,12 @@ class HitGeometry final : public SceneAttachment {
   gl::Buffer geometries_;
   gl::Buffer instances_;
   gl::Buffer materials_;
+  std::uint64_t id_;
+  std::vector<HitVertexGpu> vertexArray_;
+  std::vector<std::uint32_t> indexArray_;
+  std::vector<HitGeometryGpu> geometryArray_;
+  std::vector<HitInstanceGpu> instanceArray_;
+  std::vector<GiMaterialGpu> materialArray_;
   std::vector<EmissiveTriangle> emissive_;
   std::size_t triangles_ = 0;
   std::size_t gpuBytes_ = 0;

@@ -1,14 +1,15 @@
 #include "gi/vpl_tracer.hpp"
 
 #include <algorithm>
-#include <cstring>
+#include <array>
+#include <span>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include "gl/shader_library.hpp"
-#include "gl/slots.hpp"
-#include "lgh/error.hpp"
+#include "gi/gi_source_buffer.hpp"
+#include "gi/gi_sources.hpp"
+#include "gi/hit_geometry.hpp"
 #include "lightgrid/lgh_types.hpp"
 
 namespace lgh {
@@ -16,15 +17,32 @@ namespace {
 
 constexpr GLuint kGroup = 64;          // local_size_x of the gi_*.comp kernels
 constexpr GLuint kMaxGroupsX = 65535;  // the GL minimum of work groups along x
+constexpr auto kVplBytes = static_cast<GLsizeiptr>(sizeof(PointLight));
 
-void setUint(GLuint program, const char* name, std::uint32_t value) {
-  glProgramUniform1ui(program, glGetUniformLocation(program, name), value);
+template <typename T>
+std::span<const std::byte> bytesOf(const std::vector<T>& values) {
+  return std::as_bytes(std::span(values));
 }
 
-void setPathUniforms(GLuint program, std::uint32_t paths, std::uint32_t seed, float offset) {
-  setUint(program, "uPathCount", paths);
-  setUint(program, "uSeed", seed);
-  glProgramUniform1f(program, glGetUniformLocation(program, "uSurfaceOffset"), offset);
+std::array<float, 3> arrayOf(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
+// The batch of one frame's light paths, in the GL kernels' terms (their uniforms).
+vk::LightPathBatch lightPathBatch(const GiSettings& settings, const VplLayout& layout,
+                                  const GiSourceTable& table, const std::vector<GpuLight>& lights,
+                                  const Scene& scene) {
+  const glm::vec4 sphere = giSceneSphere(scene);
+  return {.paths = static_cast<std::uint32_t>(layout.paths),
+          .vplCount = static_cast<std::uint32_t>(layout.count),
+          .bounces = static_cast<std::uint32_t>(settings.bounces),
+          .seed = settings.seed,
+          .emissionSlot = layout.emissionSlot,
+          .surfaceOffset = giSurfaceOffset(scene),
+          .sceneSphere = {sphere.x, sphere.y, sphere.z, sphere.w},
+          .sceneMin = arrayOf(scene.bounds.empty() ? glm::vec3(-1.0F) : scene.bounds.min),
+          .sceneMax = arrayOf(scene.bounds.empty() ? glm::vec3(1.0F) : scene.bounds.max),
+          .sourceCount = static_cast<std::uint32_t>(table.sources.size()),
+          .sources = bytesOf(table.sources),
+          .lights = bytesOf(lights)};
 }
 
 }  // namespace
@@ -48,17 +66,11 @@ void insertNestedRow(TimingTable& table, const std::string& parent, TimingRow ro
   table.rows.insert(it, std::move(row));
 }
 
-VplTracer::VplTracer()
-    : emit_(gl::buildComputeProgram("gi_emit.comp")),
-      bounce_(gl::buildComputeProgram("gi_bounce.comp")) {}
-VplTracer::~VplTracer() = default;
-
 // Zeroes slots [from, count): the ones no path writes this frame.
 void VplTracer::clearSlots(GLuint vpls, int from, int count) {
   if (count <= from) return;
-  constexpr auto kBytes = static_cast<GLintptr>(sizeof(PointLight));
-  glClearNamedBufferSubData(vpls, GL_R32F, from * kBytes, (count - from) * kBytes, GL_RED, GL_FLOAT,
-                            nullptr);
+  glClearNamedBufferSubData(vpls, GL_R32F, from * kVplBytes, (count - from) * kVplBytes, GL_RED,
+                            GL_FLOAT, nullptr);
 }
 
 VplLayout VplTracer::generate(const VplTracingInputs& inputs, const CachedScene& cached,
@@ -71,14 +83,14 @@ VplLayout VplTracer::generate(const VplTracingInputs& inputs, const CachedScene&
   const Scene& scene = cached.scene;
   VplLayout layout;
   layout.count = settings.vplCount;
-  vpls.reserve(static_cast<GLsizeiptr>(std::max(layout.count, 1)) *
-               static_cast<GLsizeiptr>(sizeof(PointLight)));
+  vpls.reserve(static_cast<GLsizeiptr>(std::max(layout.count, 1)) * kVplBytes);
 
   const GiTracing::Session session = tracing.begin(cached, inputs.tracing, "/settings/gi/enabled");
   asBuildMs_ = session.asBuildMs;
   const HitGeometry& geometry = HitGeometry::of(cached, inputs.materials);
   for (const std::string& warning : geometry.warnings()) report.warn(warning);
-  const GiSourceTable& table = sources_.update(inputs.lights, geometry, scene);
+  const GiSourceTable table =
+      buildGiSources(inputs.lights, geometry.emissiveTriangles(), scene.bounds);
   layout.emissionSlot = table.hasTriangles;
   layout.slotsPerPath = settings.bounces + (layout.emissionSlot ? 1 : 0);
   layout.paths = table.sources.empty() ? 0 : layout.count / layout.slotsPerPath;
@@ -95,56 +107,43 @@ VplLayout VplTracer::generate(const VplTracingInputs& inputs, const CachedScene&
                                   layout.count, layout.slotsPerPath));
     return layout;
   }
-  const auto paths = static_cast<std::uint32_t>(layout.paths);
-  clearSlots(vpls.id(), layout.paths * layout.slotsPerPath, layout.count);  // the left-over ones
-  paths_.reserve(static_cast<GLsizeiptr>(paths) * 16);
-  const HitBatchTransport::GlBuffers batch = session.transport->prepare(paths);
-  const float offset = giSurfaceOffset(scene);
-
-  geometry.bind();
-  sources_.bind(inputs.lightBuffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_GI_PATHS, paths_.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_GI_VPLS, vpls.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_GI_RAYS, batch.rays);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_GI_HITS, batch.hits);
-  {
-    gl::ScopedGpuPass pass(timer, "gi emit");
-    glUseProgram(emit_.id());
-    sources_.setUniforms(emit_.id(), scene);
-    setPathUniforms(emit_.id(), paths, settings.seed, offset);
-    setUint(emit_.id(), "uEmissionSlots", layout.emissionSlot ? 1U : 0U);
-    dispatchGi(paths);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-  }
-  for (int bounce = 1; bounce <= settings.bounces; ++bounce) {
-    transferMs_ += tracing.trace(session, {.rays = paths, .query = vk::HitQuery::Closest});
-    traced_ = true;
-    // The transport may have rebound nothing, but staging copies used the copy bindings.
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_GI_RAYS, batch.rays);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_GI_HITS, batch.hits);
-    gl::ScopedGpuPass pass(timer, fmt::format("gi bounce {}", bounce));
-    glUseProgram(bounce_.id());
-    sources_.setUniforms(bounce_.id(), scene);
-    setPathUniforms(bounce_.id(), paths, settings.seed, offset);
-    setUint(bounce_.id(), "uBounce", static_cast<std::uint32_t>(bounce));
-    setUint(bounce_.id(), "uLastBounce", bounce == settings.bounces ? 1U : 0U);
-    setUint(bounce_.id(), "uSlot",
-            static_cast<std::uint32_t>(bounce - 1 + (layout.emissionSlot ? 1 : 0)));
-    dispatchGi(paths);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-  }
-  glUseProgram(0);
-  HitGeometry::unbind();
-  report.decide("gi_transport", session.transport->name());
+  // The frame's lights as the sources name them (their index in the frame's light buffer).
+  lights_.clear();
+  lights_.reserve(inputs.lights.size());
+  for (const LightDesc& light : inputs.lights) lights_.push_back(packLight(light));
+  const GLuint shared = session.vpls->prepare(static_cast<std::uint32_t>(layout.count));
+  transferMs_ += tracing.traceLightPaths(session, geometry.lightPathScene(),
+                                         lightPathBatch(settings, layout, table, lights_, scene));
+  traced_ = true;
+  bounces_ = settings.bounces;
+  // Into the buffer the LGH build reads: a GPU copy (the shared buffer is the tracer's).
+  glCopyNamedBufferSubData(shared, vpls.id(), 0, 0, layout.count * kVplBytes);
+  report.decide("gi_transport", session.vpls->name());
   return layout;
 }
 
 void VplTracer::collectTimings(GiTracing& tracing, TimingTable& table) {
   if (asBuildMs_ >= 0.0) table.add("gi as build", TimingRow::Clock::Gpu, asBuildMs_);
   if (!traced_) return;
-  insertNestedRow(table, "gi vpls", {"gi rays", TimingRow::Clock::Gpu, tracing.collectGpuMs(), 0});
-  table.add("gi transfer", TimingRow::Clock::Cpu, transferMs_);
   traced_ = false;
+  const vk::LightPathTimings vulkan = tracing.collectLightPathTimings();
+  // GL's span holds the submission where GL waits for it on the GPU (interop semaphores); with
+  // staging copies it holds only the copy, and the submission's own span is the generation.
+  auto whole = std::find_if(table.rows.begin(), table.rows.end(),
+                            [](const TimingRow& row) { return row.name == "gi vpls"; });
+  if (whole != table.rows.end()) {
+    whole->milliseconds = std::max(whole->milliseconds, vulkan.totalMs);
+  } else {
+    table.add("gi vpls", TimingRow::Clock::Gpu, vulkan.totalMs);
+  }
+  insertNestedRow(table, "gi vpls", {"gi emit", TimingRow::Clock::Gpu, vulkan.emitMs, 0});
+  for (int bounce = 1; bounce <= bounces_; ++bounce) {
+    insertNestedRow(table, "gi vpls",
+                    {fmt::format("gi bounce {}", bounce), TimingRow::Clock::Gpu,
+                     vulkan.bounceMs[static_cast<std::size_t>(bounce - 1)], 0});
+  }
+  insertNestedRow(table, "gi vpls", {"gi rays", TimingRow::Clock::Gpu, vulkan.raysMs, 0});
+  table.add("gi transfer", TimingRow::Clock::Cpu, transferMs_);
 }
 
 }  // namespace lgh

@@ -1,32 +1,35 @@
 // Virtual point lights by light tracing (docs/GI.md; the paper's Sec. 4: "tracing light rays up
-// to three diffuse bounces"), on the GPU, into the buffer the LGH build reads:
-//   gi emit      (GL) a path per slot group: a light source picked by power, the first ray, the
+// to three diffuse bounces"), on the GPU, into the buffer the LGH build reads. Every step runs on
+// the Vulkan tracer in one submission (vk/shadow_tracer.hpp, "Light paths"), handed to and from
+// GL once per frame (VplTransport):
+//   gi emit      a path per slot group: a light source picked by power, the first ray, the
 //                path's flux, and for an emissive triangle its emission VPL
-//   per bounce:  rays (Vulkan, closest hits) -> gi bounce (GL): the hit resolved into a surface
-//                point, a VPL there (flux x albedo / 2 pi), the next ray (cosine-weighted, flux x
-//                albedo) before the last bounce
+//   per bounce:  rays (closest hits) -> gi bounce: the hit resolved into a surface point, a VPL
+//                there (flux x albedo / 2 pi), the next ray (cosine-weighted, flux x albedo)
+//                before the last bounce
+// then GL copies the VPLs into the LGH build's buffer.
 // Layout: N = vpl_count slots, S = bounces (+1 when an emissive triangle emits) slots per path,
 // P = N / S paths; VPL slot s of path p is vpls[s * P + p]. A path that leaves the scene leaves
 // dark slots (zero intensity: the build ignores them), as do the N - P S slots left over. No
 // Russian roulette: every path's slots are written every frame, and the same seed, lights and
 // scene give the same VPLs whichever tracing path traces them.
-//   inputs:  GiSettings, the frame's lights (and their GL buffer), the scene (its hit geometry
-//            and acceleration structures, built on first use), the shadow path setting
-//   outputs: the VPL buffer (PointLight x N), timing rows ("gi vpls" around "gi emit" and
-//            "gi bounce <b>"; Vulkan "gi rays" and the CPU "gi transfer" come with
-//            collectTimings), decisions ("gi_paths", "gi_slots_per_path", "gi_tracing",
-//            "gi_transport"), warnings (no light to trace, too few slots)
+//   inputs:  GiSettings, the frame's lights, the scene (its hit geometry and acceleration
+//            structures, built on first use), the shadow path setting
+//   outputs: the VPL buffer (PointLight x N), timing rows (collectTimings: "gi vpls" with "gi
+//            emit", "gi bounce <b>" and "gi rays" inside, from the submission's Vulkan
+//            timestamps; the CPU "gi transfer"), decisions ("gi_paths", "gi_slots_per_path",
+//            "gi_tracing", "gi_transport"), warnings (no light to trace, too few slots)
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "frame_report.hpp"
-#include "gi/gi_source_buffer.hpp"
 #include "gi/gi_tracing.hpp"
 #include "gl/gl_objects.hpp"
 #include "gl/gpu_timer.hpp"
 #include "lgh/request.hpp"
+#include "passes/light_buffer.hpp"
 #include "scene/scene_cache.hpp"
 
 namespace lgh {
@@ -34,7 +37,7 @@ namespace lgh {
 struct VplTracingInputs {
   const GiSettings& settings;
   const std::vector<LightDesc>& lights;  // the frame's lights, in the order of lightBuffer
-  GLuint lightBuffer = 0;                // their GpuLight SSBO
+  GLuint lightBuffer = 0;  // their GpuLight SSBO (the light paths pack `lights` for Vulkan)
   ShadowTracing tracing = ShadowTracing::Auto;
   const std::vector<Material>& materials;  // the frame's (MaterialTable), one per scene material
 };
@@ -49,8 +52,7 @@ struct VplLayout {
 
 class VplTracer {
  public:
-  VplTracer();
-  ~VplTracer();
+  VplTracer() = default;
   VplTracer(const VplTracer&) = delete;
   VplTracer& operator=(const VplTracer&) = delete;
 
@@ -60,19 +62,18 @@ class VplTracer {
   VplLayout generate(const VplTracingInputs& inputs, const CachedScene& scene, GiTracing& tracing,
                      gl::SizedBuffer& vpls, gl::GpuTimer& timer, FrameReport& report);
 
-  // The rows of the last generate() that come after the GL timer: "gi rays" (Vulkan, inside
-  // "gi vpls"), "gi as build", "gi transfer" (CPU).
+  // The rows of the last generate() that come after the GL timer: "gi vpls" (GL's span around
+  // the hand-over, or the Vulkan submission's where longer) with the Vulkan steps inside it ("gi
+  // emit", "gi bounce <b>", "gi rays"), "gi as build", "gi transfer" (CPU).
   void collectTimings(GiTracing& tracing, TimingTable& table);
 
  private:
   void clearSlots(GLuint vpls, int from, int count);
 
-  gl::Program emit_;
-  gl::Program bounce_;
-  GiSourceBuffer sources_;
-  gl::SizedBuffer paths_;
+  std::vector<GpuLight> lights_;
   double transferMs_ = 0.0;
   double asBuildMs_ = -1.0;
+  int bounces_ = 0;
   bool traced_ = false;
 };
 

@@ -38,9 +38,25 @@ PipelineProgram hitPipelineProgram() {
 
 }  // namespace
 
+HitPushConstants hitBatchConstants(const HitBatchShape& shape) {
+  return {.rayCount = shape.rays,
+          .anyHit = shape.query == HitQuery::Any ? 1U : 0U,
+          .launchWidth = std::min(shape.rays, kHitLaunchWidth)};
+}
+
+TraceLaunch hitBatchLaunch(const HitBatchShape& shape) {
+  return {.width = std::min(shape.rays, kHitLaunchWidth),
+          .height = (shape.rays + kHitLaunchWidth - 1) / kHitLaunchWidth};
+}
+
+TraceLayout createHitTraceLayout(const VulkanDevice& device, ::vk::ShaderStageFlags stages,
+                                 std::uint32_t sets) {
+  return {device, stages, sets, kHitBuffers, sizeof(HitPushConstants)};
+}
+
 HitTracer::HitTracer(const VulkanDevice& device, ::vk::ShaderStageFlags stages)
     : device_(&device),
-      layout_(device, stages, kSlots, kHitBuffers, sizeof(HitPushConstants)),
+      layout_(createHitTraceLayout(device, stages, kSlots)),
       submissions_(device, kSlots) {
   if (device.capabilities().rayQuery) {
     rayQuery_ = createRayQueryRecorder(device, layout_, hitQueryProgram());
@@ -74,7 +90,7 @@ SemaphoreFds HitTracer::exportSemaphores() {
   return semaphores_->exportFds();
 }
 
-const TraceRecorder& HitTracer::recorderFor(TracePath path) const {
+const TraceRecorder& HitTracer::recorder(TracePath path) const {
   const auto& recorder = path == TracePath::RayQuery ? rayQuery_ : pipeline_;
   if (!recorder) {
     throw Error(ErrorCode::Unavailable, fmt::format("traceHits: {} has no {} path",
@@ -85,7 +101,7 @@ const TraceRecorder& HitTracer::recorderFor(TracePath path) const {
 
 void HitTracer::trace(const AccelerationScene& scene, TracePath path, const HitBatchShape& shape,
                       bool useSemaphores) {
-  const TraceRecorder& recorder = recorderFor(path);
+  const TraceRecorder& pathRecorder = recorder(path);
   checkHitBatch(shape.rays, device_->limits().maxStorageBufferRange);
   if (!buffers_.allocated() || !buffers_.fits(shape.rays, buffers_.shared().transport)) {
     throw Error(ErrorCode::Invalid,
@@ -99,15 +115,12 @@ void HitTracer::trace(const AccelerationScene& scene, TracePath path, const HitB
   const std::uint32_t slot = submissions_.acquire();
   const std::array<::vk::Buffer, kHitBuffers> shared{buffers_.rays(), buffers_.hits()};
   layout_.write(slot, scene.topLevel(), shared);
-  const HitPushConstants constants{.rayCount = shape.rays,
-                                   .anyHit = shape.query == HitQuery::Any ? 1U : 0U,
-                                   .launchWidth = std::min(shape.rays, kHitLaunchWidth)};
-  const std::uint32_t rows = (shape.rays + kHitLaunchWidth - 1) / kHitLaunchWidth;
+  const HitPushConstants constants = hitBatchConstants(shape);
   submitTraceBatch(submissions_, slot, device_->queueFamily(),
-                   {.recorder = &recorder,
+                   {.recorder = &pathRecorder,
                     .set = layout_.set(slot),
                     .constants = constantBytes(constants),
-                    .launch = {.width = constants.launchWidth, .height = rows},
+                    .launch = hitBatchLaunch(shape),
                     .transport = buffers_.shared().transport,
                     .buffers = shared},
                    useSemaphores ? &*semaphores_ : nullptr);

@@ -19,6 +19,14 @@ namespace lgh::vk {
 class AccelerationScene;
 class VulkanDevice;
 
+// The push constants and the launch of a closest-hit batch.
+HitPushConstants hitBatchConstants(const HitBatchShape& shape);
+TraceLaunch hitBatchLaunch(const HitBatchShape& shape);
+
+// The trace layout of closest-hit batches: the top level, rays and hits, HitPushConstants.
+TraceLayout createHitTraceLayout(const VulkanDevice& device, ::vk::ShaderStageFlags stages,
+                                 std::uint32_t sets);
+
 class HitTracer {
  public:
   // `stages`: the shader stages of the tracing paths the device has.
@@ -30,9 +38,11 @@ class HitTracer {
              bool useSemaphores);
   TraceTimings collectTimings();
 
- private:
-  const TraceRecorder& recorderFor(TracePath path) const;
+  // The recorder of `path` (the light paths record it into their own submission, with sets of
+  // an identical TraceLayout). Throws lgh::Error(Unavailable) when the device lacks the path.
+  const TraceRecorder& recorder(TracePath path) const;
 
+ private:
   const VulkanDevice* device_;
   TraceLayout layout_;
   std::unique_ptr<TraceRecorder> rayQuery_;

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 
 #include "lgh/enum_names.hpp"
@@ -137,6 +138,57 @@ struct HitBuffers {
   SharedBuffer hits;
 };
 
+// ---- Light paths: GI's VPLs, every bounce in one submission (docs/GI.md) ----------------------
+// The light paths' emit kernel, then per bounce a closest-hit trace and the bounce kernel
+// (glsl/vk/gi_emit.comp, gi_bounce.comp), recorded into one command buffer: the rays, hits and
+// paths never leave Vulkan; only the VPL buffer is shared with GL (interop or staging, as the
+// batches above). The scene's surfaces as the bounce kernel reads them at hits, as byte arrays in
+// the std430 layouts of glsl/include/hit_surface.glsl and gi_material.glsl (renderer/src/gi/
+// hit_geometry.hpp packs them); uploaded to the device once per `id`.
+struct LightPathScene {
+  std::uint64_t id = 0;  // the same id, the same arrays
+  std::span<const std::byte> vertices;
+  std::span<const std::byte> indices;
+  std::span<const std::byte> geometries;
+  std::span<const std::byte> instances;
+  std::span<const std::byte> materials;
+  std::span<const std::byte> albedoTexels;  // packed sRGB RGBA8, 256^2 per layer
+};
+
+// One frame's light paths (docs/GI.md, "Light paths"): `paths` paths of `slotsPerPath` VPL slots
+// (VPL slot s of path p at [s * paths + p]), slots from paths * slotsPerPath to vplCount cleared.
+struct LightPathBatch {
+  std::uint32_t paths = 0;
+  std::uint32_t vplCount = 0;
+  std::uint32_t bounces = 0;  // 1..kMaxLightPathBounces
+  std::uint32_t seed = 0;
+  bool emissionSlot = false;  // slot 0 of each path: its emission VPL
+  float surfaceOffset = 0.0F;
+  std::array<float, 4> sceneSphere{};
+  std::array<float, 3> sceneMin{};
+  std::array<float, 3> sceneMax{};
+  std::uint32_t sourceCount = 0;
+  std::span<const std::byte> sources;  // GiSource x sourceCount (glsl/include/gi_sources.glsl)
+  std::span<const std::byte> lights;   // the frame's Light array (glsl/include/lights.glsl)
+};
+inline constexpr std::uint32_t kMaxLightPathBounces = 3;
+
+// The VPL buffer (PointLight per slot), shared with GL like the batch buffers.
+struct VplBuffers {
+  Transport transport = Transport::Staging;
+  std::uint64_t generation = 0;  // changes whenever the buffer is reallocated
+  SharedBuffer vpls;
+};
+
+// Vulkan timestamps of the last submission's steps; all 0 without timestamps.
+struct LightPathTimings {
+  bool traced = false;
+  double totalMs = 0.0;  // the whole submission
+  double emitMs = 0.0;   // the inputs' upload, the slots' clear and the emit kernel
+  double raysMs = 0.0;   // the traces, summed
+  std::array<double, kMaxLightPathBounces> bounceMs{};
+};
+
 class ShadowTracer {
  public:
   // Loads libvulkan.so.1 at run time, picks the physical device whose deviceUUID equals
@@ -184,6 +236,17 @@ class ShadowTracer {
   virtual void traceHits(const TraceScene& scene, TracePath path, const HitBatchShape& shape,
                          bool useSemaphores) = 0;
   virtual TraceTimings collectHitTimings() = 0;
+
+  // Light paths, with a buffer, semaphores and timings of their own: the same contract as
+  // rayBuffers, exportSemaphores, trace and collectTimings, for the VPL buffer of `vplCount`
+  // slots. traceLightPaths waits on GL's `glDone` (GL is done reading the VPLs) and signals
+  // `vkDone` (they are written) around its one submission.
+  virtual const VplBuffers& vplBuffers(std::uint32_t vplCount, Transport transport) = 0;
+  virtual SemaphoreFds exportLightPathSemaphores() = 0;
+  virtual void traceLightPaths(const TraceScene& scene, TracePath path,
+                               const LightPathScene& surfaces, const LightPathBatch& batch,
+                               bool useSemaphores) = 0;
+  virtual LightPathTimings collectLightPathTimings() = 0;
 };
 
 }  // namespace lgh::vk

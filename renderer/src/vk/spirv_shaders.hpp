@@ -14,5 +14,7 @@ std::span<const std::uint32_t> closest_hit_query_comp();
 std::span<const std::uint32_t> closest_hit_rgen();
 std::span<const std::uint32_t> closest_hit_rmiss();
 std::span<const std::uint32_t> closest_hit_rchit();
+std::span<const std::uint32_t> gi_emit_comp();
+std::span<const std::uint32_t> gi_bounce_comp();
 
 }  // namespace lgh::vk::spirv

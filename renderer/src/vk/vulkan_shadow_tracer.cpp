@@ -13,6 +13,7 @@
 #include "vk/acceleration_scene.hpp"
 #include "vk/exported_semaphores.hpp"
 #include "vk/hit_tracer.hpp"
+#include "vk/light_path_tracer.hpp"
 #include "vk/physical_device.hpp"
 #include "vk/ray_buffer_set.hpp"
 #include "vk/shadow_tracer.hpp"
@@ -73,7 +74,8 @@ class VulkanShadowTracer final : public ShadowTracer {
         info_(device_->info()),
         layout_(*device_, traceStages(device_->capabilities()), kSlots),
         submissions_(*device_, kSlots),
-        hits_(*device_, traceStages(device_->capabilities())) {
+        hits_(*device_, traceStages(device_->capabilities())),
+        lightPaths_(*device_, hits_, traceStages(device_->capabilities())) {
     if (info_.rayQuery) {
       rayQuery_ = createRayQueryRecorder(*device_, layout_, shadowQueryProgram());
     }
@@ -170,6 +172,27 @@ class VulkanShadowTracer final : public ShadowTracer {
     return translateVulkanErrors("collectHitTimings", [&] { return hits_.collectTimings(); });
   }
 
+  // Light paths: forwarded to their own half (vk/light_path_tracer.hpp).
+  const VplBuffers& vplBuffers(std::uint32_t vplCount, Transport transport) override {
+    return translateVulkanErrors("vplBuffers", [&]() -> const VplBuffers& {
+      return lightPaths_.buffers(vplCount, transport);
+    });
+  }
+  SemaphoreFds exportLightPathSemaphores() override {
+    return translateVulkanErrors("exportLightPathSemaphores",
+                                 [&] { return lightPaths_.exportSemaphores(); });
+  }
+  void traceLightPaths(const TraceScene& scene, TracePath path, const LightPathScene& surfaces,
+                       const LightPathBatch& batch, bool useSemaphores) override {
+    translateVulkanErrors("traceLightPaths", [&] {
+      lightPaths_.trace(ownScene(scene), path, surfaces, batch, useSemaphores);
+    });
+  }
+  LightPathTimings collectLightPathTimings() override {
+    return translateVulkanErrors("collectLightPathTimings",
+                                 [&] { return lightPaths_.collectTimings(); });
+  }
+
  private:
   const AccelerationScene& ownScene(const TraceScene& scene) const {
     const auto* built = dynamic_cast<const AccelerationScene*>(&scene);
@@ -209,6 +232,7 @@ class VulkanShadowTracer final : public ShadowTracer {
   RayBufferSet rayBuffers_;
   std::optional<ExportedSemaphores> semaphores_;
   HitTracer hits_;
+  LightPathTracer lightPaths_;
 };
 
 }  // namespace

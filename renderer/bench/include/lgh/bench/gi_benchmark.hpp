@@ -71,7 +71,7 @@ struct GiTable2Row {
   int levels = 0;
   std::uint32_t gridLights = 0;
   std::uint32_t litVpls = 0;        // VPLs with light (paths that left the scene leave none)
-  double generationMs = 0.0;        // "gi vpls" (GL timeline: emit, bounces, Vulkan rays)
+  double generationMs = 0.0;        // "gi vpls" (one Vulkan submission: emit, rays, bounces)
   double constructionMs = 0.0;      // "lgh build"
   double renderNoShadowMs = 0.0;    // the frame minus generation and construction, no shadows
   double render1ShadowMs = 0.0;     // ... shadows on, 1 sample per pixel

@@ -1,10 +1,13 @@
-#version 450 core
+#version 460
 // Light paths, start: one invocation per path picks a light source by power, the path's first
 // ray and flux, and for an emissive triangle its emission VPL (a point on the triangle: the area
-// light's direct light reaches the frame through the LGH). docs/GI.md.
+// light's direct light reaches the frame through the LGH). docs/GI.md. Recorded by
+// renderer/src/vk/light_path_tracer.cpp ahead of the traces and bounces, in one submission.
 // Inputs: the source table, the frame's lights. Outputs: the rays (closest-hit batch), the paths'
 // state, the emission slot of the VPLs.
+#extension GL_GOOGLE_include_directive : require
 
+#include "include/light_path_constants.glsl"
 #include "include/gi_sources.glsl"
 #include "include/lgh_types.glsl"
 
@@ -14,11 +17,6 @@ layout(std430, binding = LGH_BIND_GI_RAYS) writeonly buffer Rays { vec4 rays[]; 
 // Per path: rgb flux, w: the source index (bits), or all 0 for a dead path.
 layout(std430, binding = LGH_BIND_GI_PATHS) writeonly buffer Paths { vec4 paths[]; };
 layout(std430, binding = LGH_BIND_GI_VPLS) writeonly buffer Vpls { PointLight vpls[]; };
-
-uniform uint uPathCount;
-uniform uint uSeed;
-uniform uint uEmissionSlots;  // 1: slot 0 of each path holds its emission VPL
-uniform float uSurfaceOffset;
 
 uint pathIndex() {
   return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationID.x;

@@ -1,13 +1,16 @@
-#version 450 core
+#version 460
 // Light paths, one bounce: one invocation per path resolves its ray's closest hit into a surface
 // point, leaves a VPL there with the path's flux times the diffuse albedo (isotropic over the
 // hemisphere the light came from: I = flux x albedo / (2 pi)), and, before the last bounce, sends
 // the path on in a cosine-weighted direction with its flux times the albedo. A path that missed,
 // died, or met the back of a single-sided surface (absorbed) leaves a dark VPL and no ray.
-// docs/GI.md.
+// docs/GI.md. Recorded by renderer/src/vk/light_path_tracer.cpp after each trace, in the same
+// submission.
 // Inputs: the closest hits, the paths' state, the scene's triangles and materials, the source
 // table. Outputs: the bounce's VPL slot, the next rays, the paths' state.
+#extension GL_GOOGLE_include_directive : require
 
+#include "include/light_path_constants.glsl"
 #include "include/gi_sources.glsl"
 #include "include/hit_surface.glsl"
 #include "include/lgh_types.glsl"
@@ -19,13 +22,7 @@ layout(std430, binding = LGH_BIND_GI_HITS) readonly buffer Hits { HitRecord hits
 layout(std430, binding = LGH_BIND_GI_PATHS) buffer Paths { vec4 paths[]; };
 layout(std430, binding = LGH_BIND_GI_VPLS) writeonly buffer Vpls { PointLight vpls[]; };
 
-uniform uint uPathCount;
-uniform uint uSeed;
-uniform uint uBounce;      // 1..bounces
-uniform uint uLastBounce;  // 1: no next ray
-uniform uint uSlot;        // the VPL slot of this bounce: VPL = vpls[uSlot * uPathCount + path]
-uniform float uSurfaceOffset;
-
+// uSlot: the VPL slot of this bounce: VPL = vpls[uSlot * uPathCount + path].
 uint pathIndex() {
   return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationID.x;
 }
