@@ -26,7 +26,23 @@ const float kMinWeight = 1e-4;
 
 vec3 reflectance(SurfacePoint s) { return max(s.baseColor, vec3(0.02)); }
 
-float geometryWeight(SurfacePoint p, SurfacePoint q, float planeSigma) {
+// What the estimate needs of a neighbour, as readSurface() would give it, from three of the
+// G-buffer's targets instead of every one: the pass reads (2n - 1)^2 neighbours per pixel.
+struct Neighbour {
+  vec3 position;
+  vec3 normal;
+  vec3 baseColor;
+};
+
+bool readNeighbour(ivec2 pixel, out Neighbour q) {
+  vec4 position = texelFetch(gPosition, pixel, 0);
+  if (position.w <= 0.5) return false;
+  q = Neighbour(position.xyz, normalize(texelFetch(gNormal, pixel, 0).xyz),
+                texelFetch(gAlbedo, pixel, 0).rgb);
+  return true;
+}
+
+float geometryWeight(SurfacePoint p, Neighbour q, float planeSigma) {
   float facing = pow(max(dot(p.normal, q.normal), 0.0), kNormalPower);
   float planeDistance = dot(p.normal, q.position - p.position) / planeSigma;
   return facing * exp(-planeDistance * planeDistance);
@@ -46,11 +62,11 @@ bool tileEstimate(ivec2 pixel, SurfacePoint p, ivec2 tile, float planeSigma, out
   for (int y = first.y; y <= pixel.y + reach; y += uInterleave) {
     for (int x = first.x; x <= pixel.x + reach; x += uInterleave) {
       ivec2 q = ivec2(x, y);
-      SurfacePoint neighbour;
-      if (!lghInFrame(q) || !readSurface(q, neighbour)) continue;
+      Neighbour neighbour;
+      if (!lghInFrame(q) || !readNeighbour(q, neighbour)) continue;
       vec2 tent = 1.0 - abs(vec2(q - pixel)) / float(uInterleave);
       float w = tent.x * tent.y * geometryWeight(p, neighbour, planeSigma);
-      sum += w * texelFetch(uAtlas, lghAtlasPixel(q), 0).rgb / reflectance(neighbour);
+      sum += w * texelFetch(uAtlas, lghAtlasPixel(q), 0).rgb / max(neighbour.baseColor, vec3(0.02));
       weightSum += w;
     }
   }
