@@ -414,7 +414,14 @@ MaterialSample sampleMaterial(FragmentInputs f, Derivatives d) {
   Uvs uvs = Uvs(f.uv0, f.uv1);
   bool height = LGH_MATERIAL_HAS(LGH_MATERIAL_HEIGHT) && hasTexture(SLOT_HEIGHT);
   int heightSet = heightUvSet();
-  TangentFrame frame = tangentFrame(f, d, geometric, hasTexture(SLOT_NORMAL) && slotUsesUv1(SLOT_NORMAL) ? 1 : heightSet);
+  // The tangent frame only where something reads it: plain surfaces skip its per-pixel solve.
+  bool layered = LGH_MATERIAL_HAS(LGH_MATERIAL_LAYERS) && uModel == MATERIAL_MODEL_METALLIC_ROUGHNESS &&
+                 uLayers != 0u;
+  TangentFrame frame = TangentFrame(vec3(0.0), vec3(0.0), geometric);
+  if (height || hasTexture(SLOT_NORMAL) || layered) {
+    frame = tangentFrame(f, d, geometric,
+                         hasTexture(SLOT_NORMAL) && slotUsesUv1(SLOT_NORMAL) ? 1 : heightSet);
+  }
   mat2 heightTransform = mat2(uUvTransform[SLOT_HEIGHT][0], uUvTransform[SLOT_HEIGHT][1]);
   vec2 gradX = heightTransform * (heightSet == 1 ? d.dUv1dx : d.dUv0dx);
   vec2 gradY = heightTransform * (heightSet == 1 ? d.dUv1dy : d.dUv0dy);
