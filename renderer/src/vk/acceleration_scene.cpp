@@ -58,7 +58,7 @@ std::pair<BottomLevels, AccelerationStructure> buildTogether(const VulkanDevice&
   BottomLevels bottom = bottomBuilds.place(storage, 0);
   AccelerationStructure top = topBuild.place(storage, topOffset);
   const auto instances = tlasInstances(scene, meshAddresses(bottom));
-  const TimestampQueries timestamps(device, 1);
+  const TimestampQueries& timestamps = device.oneTimeCommands().timestamps();
   const Stopwatch submission;
   submitAndWait(device, [&](const ::vk::raii::CommandBuffer& commands) {
     bottomBuilds.recordUpload(commands);

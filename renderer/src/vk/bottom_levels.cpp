@@ -253,7 +253,7 @@ BottomLevels BottomLevelBuilds::buildCompacted() {
       device.device(), ::vk::QueryPoolCreateInfo{
                            .queryType = ::vk::QueryType::eAccelerationStructureCompactedSizeKHR,
                            .queryCount = static_cast<std::uint32_t>(builds.size())});
-  const TimestampQueries timestamps(device, 2);
+  const TimestampQueries& timestamps = device.oneTimeCommands().timestamps();
   submitAndWait(device, [&](const ::vk::raii::CommandBuffer& commands) {
     state_->upload->record(commands);
     timestamps.begin(commands, 0);

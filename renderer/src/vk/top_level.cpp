@@ -53,7 +53,7 @@ AccelerationStructure TopLevelBuild::build(
       device_, accelerationStorage(std::max<::vk::DeviceSize>(storageBytes(), 1)));
   AccelerationStructure structure = place(storage, 0);
   const DeviceBuffer scratch(device_, accelerationScratch(device_, scratchBytes()));
-  const TimestampQueries timestamps(device_, 1);
+  const TimestampQueries& timestamps = device_.oneTimeCommands().timestamps();
   submitAndWait(device_, [&](const ::vk::raii::CommandBuffer& commands) {
     timestamps.begin(commands, 0);
     record(commands, instances, scratch.address());

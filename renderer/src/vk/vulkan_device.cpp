@@ -100,7 +100,8 @@ VulkanDevice::VulkanDevice(::vk::raii::Instance instance, ::vk::raii::PhysicalDe
       queue_(device_, queueFamily_, 0),
       limits_(readLimits(physical_, capabilities_.rayTracingPipeline, queueFamily_)),
       memory_(physical_.getMemoryProperties()),
-      info_(describe(physical_, capabilities_)) {}
+      info_(describe(physical_, capabilities_)),
+      oneTimeCommands_(std::make_unique<OneTimeCommands>(*this)) {}
 
 void VulkanDevice::waitIdleNoThrow() const noexcept {
   try {

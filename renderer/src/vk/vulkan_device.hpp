@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "vk/device_capabilities.hpp"
+#include "vk/one_time_commands.hpp"
 #include "vk/shadow_tracer.hpp"
 #include "vk/vulkan_hpp.hpp"
 
@@ -41,6 +42,9 @@ class VulkanDevice {
   // Device name, driver and API version, and the capabilities (createMs left to the tracer).
   const TracerInfo& info() const { return info_; }
 
+  // The reused command buffer of the builds and uploads that are waited for (submitAndWait).
+  OneTimeCommands& oneTimeCommands() const { return *oneTimeCommands_; }
+
   // Waits for the queue to finish; for destructors, so it throws nothing (a lost device has
   // nothing left to wait for).
   void waitIdleNoThrow() const noexcept;
@@ -57,6 +61,8 @@ class VulkanDevice {
   DeviceLimits limits_;
   ::vk::PhysicalDeviceMemoryProperties memory_;
   TracerInfo info_;
+  // Declared after device_: destroyed before it.
+  std::unique_ptr<OneTimeCommands> oneTimeCommands_;
 };
 
 }  // namespace lgh::vk
