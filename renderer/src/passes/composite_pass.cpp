@@ -89,8 +89,9 @@ gl::Program buildCompositeProgram(OutputPixels pixels, bool toScene) {
 const gl::Program& CompositePass::program(OutputPixels pixels, bool toScene) {
   // The scene target is linear float; the outputs one program per kind of pixels.
   std::optional<gl::Program>& slot = toScene ? scene_ : programs_[static_cast<std::size_t>(pixels)];
-  if (!slot)
+  if (!slot) {
     slot.emplace(buildCompositeProgram(toScene ? OutputPixels::LinearFloat : pixels, toScene));
+  }
   return *slot;
 }
 
