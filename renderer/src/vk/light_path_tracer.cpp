@@ -92,17 +92,6 @@ constexpr std::array<std::uint32_t, 12> kBindings{
                       .pPoolSizes = &size}};
 }
 
-::vk::raii::Pipeline createComputePipeline(const VulkanDevice& device,
-                                           const ::vk::raii::PipelineLayout& layout,
-                                           std::span<const std::uint32_t> code) {
-  const ::vk::raii::ShaderModule shader = createShaderModule(device, code);
-  return {device.device(), nullptr,
-          ::vk::ComputePipelineCreateInfo{.stage = {.stage = ::vk::ShaderStageFlagBits::eCompute,
-                                                    .module = *shader,
-                                                    .pName = "main"},
-                                          .layout = *layout}};
-}
-
 DeviceBuffer deviceLocal(const VulkanDevice& device, ::vk::DeviceSize size) {
   return {
       device,
@@ -162,8 +151,8 @@ LightPathTracer::LightPathTracer(const VulkanDevice& device, const HitTracer& hi
       sets_(device.device(),
             ::vk::DescriptorSetAllocateInfo{
                 .descriptorPool = *pool_, .descriptorSetCount = 1, .pSetLayouts = &*setLayout_}),
-      emit_(createComputePipeline(device, pipelineLayout_, spirv::gi_emit_comp())),
-      bounce_(createComputePipeline(device, pipelineLayout_, spirv::gi_bounce_comp())),
+      emit_(createComputePipeline(device, *pipelineLayout_, spirv::gi_emit_comp())),
+      bounce_(createComputePipeline(device, *pipelineLayout_, spirv::gi_bounce_comp())),
       traceLayout_(createHitTraceLayout(device, traceStages, 1)),
       commandPool_(
           device.device(),

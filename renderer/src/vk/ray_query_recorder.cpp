@@ -14,7 +14,7 @@ class RayQueryRecorder final : public TraceRecorder {
       : layout_(&layout),
         groupWidth_(program.groupWidth),
         groupHeight_(program.groupHeight),
-        pipeline_(createPipeline(device, layout, program.shader)) {}
+        pipeline_(createComputePipeline(device, *layout.pipelineLayout(), program.shader)) {}
 
   ::vk::PipelineStageFlags stage() const override {
     return ::vk::PipelineStageFlagBits::eComputeShader;
@@ -31,16 +31,6 @@ class RayQueryRecorder final : public TraceRecorder {
   }
 
  private:
-  static ::vk::raii::Pipeline createPipeline(const VulkanDevice& device, const TraceLayout& layout,
-                                             std::span<const std::uint32_t> code) {
-    const ::vk::raii::ShaderModule shader = createShaderModule(device, code);
-    return {device.device(), nullptr,
-            ::vk::ComputePipelineCreateInfo{.stage = {.stage = ::vk::ShaderStageFlagBits::eCompute,
-                                                      .module = *shader,
-                                                      .pName = "main"},
-                                            .layout = *layout.pipelineLayout()}};
-  }
-
   const TraceLayout* layout_;
   std::uint32_t groupWidth_;
   std::uint32_t groupHeight_;

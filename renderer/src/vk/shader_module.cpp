@@ -10,4 +10,14 @@ namespace lgh::vk {
           ::vk::ShaderModuleCreateInfo{.codeSize = spirv.size_bytes(), .pCode = spirv.data()}};
 }
 
+::vk::raii::Pipeline createComputePipeline(const VulkanDevice& device, ::vk::PipelineLayout layout,
+                                           std::span<const std::uint32_t> spirv) {
+  const ::vk::raii::ShaderModule shader = createShaderModule(device, spirv);
+  return {device.device(), nullptr,
+          ::vk::ComputePipelineCreateInfo{.stage = {.stage = ::vk::ShaderStageFlagBits::eCompute,
+                                                    .module = *shader,
+                                                    .pName = "main"},
+                                          .layout = layout}};
+}
+
 }  // namespace lgh::vk

@@ -1,4 +1,4 @@
-// A shader module from the embedded SPIR-V (spirv_shaders.hpp).
+// A shader module from the embedded SPIR-V (spirv_shaders.hpp), and a compute pipeline of one.
 #pragma once
 
 #include <cstdint>
@@ -12,5 +12,9 @@ class VulkanDevice;
 
 ::vk::raii::ShaderModule createShaderModule(const VulkanDevice& device,
                                             std::span<const std::uint32_t> spirv);
+
+// A compute pipeline of `spirv`'s "main" with `layout`.
+::vk::raii::Pipeline createComputePipeline(const VulkanDevice& device, ::vk::PipelineLayout layout,
+                                           std::span<const std::uint32_t> spirv);
 
 }  // namespace lgh::vk
