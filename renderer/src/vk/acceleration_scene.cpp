@@ -53,8 +53,8 @@ std::pair<BottomLevels, AccelerationStructure> buildTogether(const VulkanDevice&
       device, accelerationStorage(topOffset + topBuild.storageBytes()));
   const ::vk::DeviceSize topScratch =
       alignUp(bottomBuilds.scratchBytes(), device.limits().scratchAlignment);
-  const DeviceBuffer scratch(device,
-                             accelerationScratch(device, topScratch + topBuild.scratchBytes()));
+  const DeviceBuffer& scratch = device.oneTimeCommands().transientBuffers().get(
+      device, accelerationScratch(device, topScratch + topBuild.scratchBytes()));
   BottomLevels bottom = bottomBuilds.place(storage, 0);
   AccelerationStructure top = topBuild.place(storage, topOffset);
   const auto instances = tlasInstances(scene, meshAddresses(bottom));

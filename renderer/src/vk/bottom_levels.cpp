@@ -30,36 +30,45 @@ class GeometryUpload {
  public:
   GeometryUpload(const VulkanDevice& device, const PackedGeometry& geometry)
       : indexOffset_(geometry.positions.size() * kPositionBytes),
-        staging_(device, {.size = indexOffset_ + geometry.indices.size() * kIndexBytes,
-                          .usage = ::vk::BufferUsageFlagBits::eTransferSrc,
-                          .memory = MemoryKind::HostVisible}),
-        buffer_(device,
-                {.size = staging_.size(),
-                 .usage = ::vk::BufferUsageFlagBits::eTransferDst |
-                          ::vk::BufferUsageFlagBits::eAccelerationStructureBuildInputReadOnlyKHR,
-                 .memory = MemoryKind::DeviceLocal,
-                 .deviceAddress = true}) {
-    std::memcpy(staging_.mapped(), geometry.positions.data(), indexOffset_);
-    std::memcpy(staging_.mapped() + indexOffset_, geometry.indices.data(),
+        bytes_(indexOffset_ + geometry.indices.size() * kIndexBytes),
+        staging_(&device.oneTimeCommands().transientBuffers().get(
+            device, {.size = bytes_,
+                     .usage = ::vk::BufferUsageFlagBits::eTransferSrc,
+                     .memory = MemoryKind::HostVisible})),
+        buffer_(&device.oneTimeCommands().transientBuffers().get(
+            device,
+            {.size = bytes_,
+             .usage = ::vk::BufferUsageFlagBits::eTransferDst |
+                      ::vk::BufferUsageFlagBits::eAccelerationStructureBuildInputReadOnlyKHR,
+             .memory = MemoryKind::DeviceLocal,
+             .deviceAddress = true})) {
+    std::memcpy(staging_->mapped(), geometry.positions.data(), indexOffset_);
+    std::memcpy(staging_->mapped() + indexOffset_, geometry.indices.data(),
                 geometry.indices.size() * kIndexBytes);
   }
 
   void record(const ::vk::raii::CommandBuffer& commands) const {
-    commands.copyBuffer(staging_.handle(), buffer_.handle(),
-                        ::vk::BufferCopy{.size = staging_.size()});
+    if (bytes_ > 0) {
+      commands.copyBuffer(
+          staging_->handle(), buffer_->handle(),
+          ::vk::BufferCopy{
+              .srcOffset = staging_->offset(), .dstOffset = buffer_->offset(), .size = bytes_});
+    }
     // Builds read their vertices and indices as shader reads in the build stage.
     memoryBarrier(commands, ::vk::PipelineStageFlagBits::eTransfer,
                   ::vk::AccessFlagBits::eTransferWrite,
                   ::vk::PipelineStageFlagBits::eAccelerationStructureBuildKHR,
                   ::vk::AccessFlagBits::eShaderRead);
   }
-  ::vk::DeviceAddress positions() const { return buffer_.address(); }
-  ::vk::DeviceAddress indices() const { return buffer_.address() + indexOffset_; }
+  ::vk::DeviceAddress positions() const { return buffer_->address(); }
+  ::vk::DeviceAddress indices() const { return buffer_->address() + indexOffset_; }
 
  private:
   ::vk::DeviceSize indexOffset_;
-  DeviceBuffer staging_;
-  DeviceBuffer buffer_;
+  ::vk::DeviceSize bytes_;
+  // Transient buffers of the device (vk/transient_buffers.hpp): valid until the build's wait.
+  const DeviceBuffer* staging_;
+  const DeviceBuffer* buffer_;
 };
 
 ::vk::AccelerationStructureGeometryKHR triangles(const PackedPrimitive& primitive,
@@ -248,7 +257,8 @@ BottomLevels BottomLevelBuilds::buildCompacted() {
             .emplace_back(device, ::vk::AccelerationStructureTypeKHR::eBottomLevel, build.bytes)
             .handle();
   }
-  const DeviceBuffer scratch(device, accelerationScratch(device, state_->scratchBytes));
+  const DeviceBuffer& scratch = device.oneTimeCommands().transientBuffers().get(
+      device, accelerationScratch(device, state_->scratchBytes));
   const ::vk::raii::QueryPool sizeQueries(
       device.device(), ::vk::QueryPoolCreateInfo{
                            .queryType = ::vk::QueryType::eAccelerationStructureCompactedSizeKHR,

@@ -9,6 +9,7 @@
 #include <mutex>
 
 #include "vk/timestamp_queries.hpp"
+#include "vk/transient_buffers.hpp"
 #include "vk/vulkan_hpp.hpp"
 
 namespace lgh::vk {
@@ -27,6 +28,8 @@ class OneTimeCommands {
   // Two timestamp pairs for the builds' GPU times, read after their submissions' waits (the
   // builds of a device run one after the other, on the thread that renders).
   const TimestampQueries& timestamps() const { return timestamps_; }
+  // The builds' staging, geometry, scratch and instance buffers, kept between them.
+  TransientBuffers& transientBuffers() { return transient_; }
 
  private:
   std::mutex mutex_;         // one submission at a time: the buffer and the fence are reused
@@ -35,6 +38,7 @@ class OneTimeCommands {
   ::vk::raii::CommandBuffers buffers_;
   ::vk::raii::Fence fence_;
   TimestampQueries timestamps_;
+  TransientBuffers transient_;
 };
 
 void submitAndWait(const VulkanDevice& device, const CommandRecorder& record);

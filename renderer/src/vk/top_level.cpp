@@ -14,10 +14,11 @@ namespace {
 // Instance data must start 16-byte aligned.
 constexpr ::vk::DeviceSize kInstanceAlignment = 16;
 
-DeviceBuffer uploadInstances(const VulkanDevice& device,
-                             const std::vector<::vk::AccelerationStructureInstanceKHR>& instances) {
+const DeviceBuffer& uploadInstances(
+    const VulkanDevice& device,
+    const std::vector<::vk::AccelerationStructureInstanceKHR>& instances) {
   const ::vk::DeviceSize bytes = instances.size() * sizeof(::vk::AccelerationStructureInstanceKHR);
-  DeviceBuffer buffer(
+  const DeviceBuffer& buffer = device.oneTimeCommands().transientBuffers().get(
       device, {.size = bytes,
                .usage = ::vk::BufferUsageFlagBits::eAccelerationStructureBuildInputReadOnlyKHR,
                .memory = MemoryKind::HostVisible,
@@ -52,7 +53,8 @@ AccelerationStructure TopLevelBuild::build(
   const auto storage = std::make_shared<const DeviceBuffer>(
       device_, accelerationStorage(std::max<::vk::DeviceSize>(storageBytes(), 1)));
   AccelerationStructure structure = place(storage, 0);
-  const DeviceBuffer scratch(device_, accelerationScratch(device_, scratchBytes()));
+  const DeviceBuffer& scratch = device_.oneTimeCommands().transientBuffers().get(
+      device_, accelerationScratch(device_, scratchBytes()));
   const TimestampQueries& timestamps = device_.oneTimeCommands().timestamps();
   submitAndWait(device_, [&](const ::vk::raii::CommandBuffer& commands) {
     timestamps.begin(commands, 0);
@@ -77,7 +79,7 @@ void TopLevelBuild::record(const ::vk::raii::CommandBuffer& commands,
   if (instances.size() > maxInstances_) {
     throw std::logic_error("TopLevelBuild: more instances than it was sized for");
   }
-  instances_.emplace(uploadInstances(device_, instances));
+  instances_ = &uploadInstances(device_, instances);
   geometry_.geometry.instances.data = instances_->address();
   ::vk::AccelerationStructureBuildGeometryInfoKHR build = info();
   build.scratchData = scratch;

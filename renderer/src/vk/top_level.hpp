@@ -45,7 +45,7 @@ class TopLevelBuild {
   ::vk::AccelerationStructureGeometryKHR geometry_;
   ::vk::AccelerationStructureBuildSizesInfoKHR sizes_;
   ::vk::AccelerationStructureKHR destination_ = nullptr;
-  std::optional<DeviceBuffer> instances_;
+  const DeviceBuffer* instances_ = nullptr;  // transient (vk/transient_buffers.hpp)
 };
 
 }  // namespace lgh::vk
