@@ -16,7 +16,7 @@ GBufferPass::GBufferPass() {
 void GBufferPass::run(const Inputs& inputs, GpuScene& gpuScene, FrameTargets& targets) {
   glBindFramebuffer(GL_FRAMEBUFFER, targets.gbuffer.framebuffer.id());
   glViewport(0, 0, targets.width, targets.height);
-  clearTargets(inputs, targets);
+  prepareTargets(inputs, targets);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDisable(GL_BLEND);
@@ -41,7 +41,7 @@ void GBufferPass::run(const Inputs& inputs, GpuScene& gpuScene, FrameTargets& ta
   unbindMaterialSamplers();
 }
 
-void GBufferPass::clearTargets(const Inputs& inputs, const FrameTargets& targets) {
+void GBufferPass::prepareTargets(const Inputs& inputs, const FrameTargets& targets) {
   // Draw buffer i is colour attachment i (passes/frame_targets.cpp); the last is the layers'.
   std::array<GLenum, 6> buffers{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
                                 GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5};

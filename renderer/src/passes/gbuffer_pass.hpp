@@ -52,7 +52,8 @@ class GBufferPass {
   float maxTessellationLevel() const { return maxTessellationLevel_; }
 
  private:
-  void clearTargets(const Inputs& inputs, const FrameTargets& targets);
+  // Picks the targets the frame writes (draw buffers) and clears the coverage and the depth.
+  void prepareTargets(const Inputs& inputs, const FrameTargets& targets);
   // One draw of every opaque surface, with the depth and colour state the caller set.
   void drawOpaque(const Inputs& inputs, GpuScene& gpuScene, const FrameTargets& targets);
 
