@@ -2,10 +2,12 @@
 
 #include <array>
 
+#include "lightgrid/lgh_types.hpp"
+
 namespace lgh {
 namespace {
 
-constexpr std::uint64_t kVplBytes = 32;  // PointLight
+static_assert(sizeof(PointLight) == vk::kVplBytes, "a VPL slot is one PointLight");
 
 // Vulkan writes the VPLs; GL reads them. The buffer is named in the semaphore signal (GL's reads
 // of the last VPLs are done) and the wait (the new ones are written).
@@ -35,7 +37,7 @@ GLuint VplTransport::prepare(std::uint32_t vplCount) {
 
 double VplTransport::trace(const vk::TraceScene& scene, vk::TracePath path,
                            const vk::LightPathScene& surfaces, const vk::LightPathBatch& batch) {
-  const std::array<std::uint64_t, 1> bytes{batch.vplCount * kVplBytes};
+  const std::array<std::uint64_t, 1> bytes{batch.vplCount * vk::kVplBytes};
   return transport_.trace(buffersFor(batch.vplCount), bytes, [&](bool useSemaphores) {
     tracer_.traceLightPaths(scene, path, surfaces, batch, useSemaphores);
   });

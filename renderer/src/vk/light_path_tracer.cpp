@@ -43,7 +43,6 @@ static_assert(sizeof(LightPathPushConstants) == 72, "std430 push constants: 18 s
 constexpr std::uint32_t kGroup = 64;          // local_size_x of glsl/vk/gi_*.comp
 constexpr std::uint32_t kMaxGroupsX = 65535;  // the Vulkan minimum of work groups along x
 constexpr ::vk::DeviceSize kStateBytes = 16;  // vec4 per path
-constexpr ::vk::DeviceSize kVplBytes = 32;    // PointLight
 constexpr ::vk::DeviceSize kMinBytes = 16;    // a buffer of 0 bytes cannot be bound
 // Timestamps: the start, after the emit kernel, and after each bounce's trace and kernel.
 constexpr std::uint32_t kTimestamps = 2 + 2 * kMaxLightPathBounces;

@@ -173,6 +173,10 @@ struct LightPathBatch {
 };
 inline constexpr std::uint32_t kMaxLightPathBounces = 3;
 
+// Bytes of one VPL slot: the PointLight the GL lighting reads (lightgrid/lgh_types.hpp; the GI
+// code checks the two agree).
+inline constexpr std::uint64_t kVplBytes = 32;
+
 // The VPL buffer (PointLight per slot), shared with GL like the batch buffers.
 struct VplBuffers {
   Transport transport = Transport::Staging;
