@@ -252,9 +252,17 @@ bool RenderWorker::bringUpRenderer() {
 // leaves scheduling first and gives its queued pieces back; the frames in flight on it fail, and
 // the encoders finish reading pixels from its read-back memory before it goes.
 void RenderWorker::recoverRenderer(const std::string& reason) {
+  markRebuilding(reason);
+  rebuildRenderer(reason);
+}
+
+void RenderWorker::markRebuilding(const std::string& reason) {
   logging::event(spdlog::level::err, "renderer_reset",
                  {{"gpu", options_.index}, {"reason", reason}});
   setState(State::Rebuilding, "rebuilding its GL context after: " + reason);
+}
+
+void RenderWorker::rebuildRenderer(const std::string& reason) {
   std::deque<JobPiece> queued;
   {
     std::lock_guard lock(mutex_);
@@ -403,18 +411,21 @@ void RenderWorker::submitTicket(const JobPiece& piece, std::size_t position,
     bytesOutstanding_ += bytes;
     return;
   } catch (const lgh::Error& error) {
+    // A GL failure may have broken the context, and a lost one (GPU reset) certainly has. The
+    // worker leaves readiness before the failed request is answered, so that a client that then
+    // sees /readyz answer 200 is not sent to a worker about to rebuild.
+    const bool recover = error.code() == lgh::ErrorCode::Internal || !renderer_->healthy();
+    if (recover) markRebuilding(error.what());
     ticket->fail(fromLghError(error));
     forget(estimate);
     metrics_.recordRender("error", options_.index);
-    // A GL failure may have broken the context, and a lost one (GPU reset) certainly has.
-    if (error.code() == lgh::ErrorCode::Internal || !renderer_->healthy()) {
-      recoverRenderer(error.what());
-    }
+    if (recover) rebuildRenderer(error.what());
   } catch (const std::exception& error) {
+    markRebuilding(error.what());
     ticket->fail(internalError(error.what()));
     forget(estimate);
     metrics_.recordRender("error", options_.index);
-    recoverRenderer(error.what());
+    rebuildRenderer(error.what());
   }
 }
 

@@ -104,6 +104,9 @@ class RenderWorker {
   void run();
   bool bringUpRenderer();
   void recoverRenderer(const std::string& reason);
+  // recoverRenderer in two steps: leave readiness (and log why), then replace the renderer.
+  void markRebuilding(const std::string& reason);
+  void rebuildRenderer(const std::string& reason);
   void setState(State state, const std::string& failure = "");
   std::optional<JobPiece> takePiece();
   void runPiece(const JobPiece& piece);
