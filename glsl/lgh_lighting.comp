@@ -44,8 +44,10 @@ layout(rgba32f, binding = LGH_IMAGE_OUTPUT) uniform writeonly image2D uOutput;
 shared uint s_boxKeys[6];      // the block's box: min xyz, max xyz as ordered integer keys
 shared uint s_runStart[GROUP];  // first light of each row's run (of this tile's lights)
 shared uint s_runScan[GROUP];   // inclusive prefix sum of the runs' lengths
-shared GridLight s_lights[GROUP];
-shared uint s_index[GROUP];
+// A batch of candidates: what the pixels' loop reads of each, in two 16-byte loads. As integers,
+// so that no hash or index passes through a float register (a NaN's bits need not survive one).
+shared uvec4 s_centerHash[GROUP];      // xyz: centre (float bits); w: reservoirLightHash(index)
+shared uvec4 s_intensityIndex[GROUP];  // xyz: intensity (float bits); w: the light's index
 shared uint s_keep[GROUP];
 
 // The pixel an invocation shades and its reservoir.
@@ -70,16 +72,32 @@ struct Block {
   uint firstLight;
 };
 
-void streamLight(inout Pixel px, uint index, GridLight light, LghFrame frame) {
+// What every light of one level shares: its blending, and whether shadow sampling uses it.
+struct LevelStream {
+  LghLevelBlend blend;
+  bool sampled;  // level >= uSampleStartLevel (lghSampleWeight)
+};
+
+// Candidate i of the batch in shared memory, one light of `level`, into the pixel's sum and
+// reservoir: what lghGridLightRadiance and lghSampleWeight give, with the level's terms and the
+// light's hash computed once per batch instead of once per pixel.
+void streamLight(inout Pixel px, uint i, LevelStream level, LghFrame frame) {
   ++px.evaluated;
+  uvec4 centerHash = s_centerHash[i];
+  uvec4 intensityIndex = s_intensityIndex[i];
   float blend;
-  vec3 radiance = lghGridLightRadiance(px.surface, px.toViewer, light, frame, blend);
+  vec3 radiance = lghGridLightRadianceAt(px.surface, px.toViewer, uintBitsToFloat(centerHash.xyz),
+                                         uintBitsToFloat(intensityIndex.xyz), level.blend,
+                                         frame.minDistance2, blend);
   if (blend <= 0.0) return;
   px.radiance += radiance;
-  float f = lghSampleWeight(light, radiance);
+  if (!level.sampled) return;
+  float f = luminance(radiance);
   if (!(f > 0.0)) return;
   px.runningSum += f;
-  uint mask = reservoirReplaceMask(f, px.runningSum, reservoirLightSeed(px.seed, index), LGH_SAMPLES);
+  uint index = intensityIndex.w;
+  uint seed = reservoirLightSeedOfHash(px.seed, centerHash.w);
+  uint mask = reservoirReplaceMask(f, px.runningSum, seed, LGH_SAMPLES);
   for (int s = 0; s < LGH_SAMPLES; ++s) {
     if ((mask & (1u << uint(s))) != 0u) {
       px.sampleLight[s] = index;
@@ -211,7 +229,10 @@ void setRowRun(uint slot, uint row, LghLevel level, LevelRange range, Block bloc
 
 // Streams the lights of the runs in s_runStart / s_runScan (scanned) through shared memory.
 void shadeRuns(inout Pixel px, uint tid, int level, LghFrame frame, Block block) {
-  float r = lghRadius(level, frame.alpha, frame.h1);
+  LevelStream stream;
+  stream.blend = lghLevelBlend(level, frame.startLevel, frame.topLevel, frame.alpha, frame.h1);
+  stream.sampled = level >= uSampleStartLevel;
+  float r = stream.blend.radius;
   float reach = level == frame.topLevel ? 3.0e38 : 2.0 * r;
   float hole = level > frame.startLevel ? 0.5 * r : 0.0;
   uint total = s_runScan[GROUP - 1u];
@@ -226,15 +247,15 @@ void shadeRuns(inout Pixel px, uint tid, int level, LghFrame frame, Block block)
       bool reaches = sphereTouchesBox(light.center, reach, block.boxMin, block.boxMax) &&
                      !boxInsideSphere(light.center, hole, block.boxMin, block.boxMax);
       keep = reaches ? 1u : 0u;
-      s_lights[tid] = light;
-      s_index[tid] = index;
+      s_centerHash[tid] = uvec4(floatBitsToUint(light.center), reservoirLightHash(index));
+      s_intensityIndex[tid] = uvec4(floatBitsToUint(light.intensity), index);
     }
     s_keep[tid] = keep;
     barrier();
     uint count = min(uint(GROUP), total - batch);
     if (px.valid) {
       for (uint i = 0u; i < count; ++i) {
-        if (s_keep[i] != 0u) streamLight(px, s_index[i], s_lights[i], frame);
+        if (s_keep[i] != 0u) streamLight(px, i, stream, frame);
       }
     }
     barrier();

@@ -18,12 +18,28 @@
 
 float lghRadius(int level, float alpha, float h1) { return alpha * h1 * exp2(float(level - 1)); }
 
+// Level l's blending as a function of d alone: its radius and whether it is the lowest or the top
+// level in use. A pass that streams one level's lights sets it up once per level instead of once
+// per light and pixel; lghBlend() is the same arithmetic.
+struct LghLevelBlend {
+  float radius;
+  bool lowest;
+  bool top;
+};
+
+LghLevelBlend lghLevelBlend(int level, int startLevel, int topLevel, float alpha, float h1) {
+  return LghLevelBlend(lghRadius(level, alpha, h1), level == startLevel, level == topLevel);
+}
+
+float lghBlendAt(LghLevelBlend level, float d) {
+  float rise = level.lowest ? 1.0 : clamp(2.0 * d / level.radius - 1.0, 0.0, 1.0);
+  float fall = level.top ? 1.0 : clamp(2.0 - d / level.radius, 0.0, 1.0);
+  return rise * fall;
+}
+
 float lghBlend(float d, int level, int startLevel, int topLevel, float alpha, float h1) {
   if (level < startLevel || level > topLevel) return 0.0;
-  float r = lghRadius(level, alpha, h1);
-  float rise = level == startLevel ? 1.0 : clamp(2.0 * d / r - 1.0, 0.0, 1.0);
-  float fall = level == topLevel ? 1.0 : clamp(2.0 - d / r, 0.0, 1.0);
-  return rise * fall;
+  return lghBlendAt(lghLevelBlend(level, startLevel, topLevel, alpha, h1), d);
 }
 
 // Distance beyond which the grid light of `level` contributes nothing (light-volume radius).

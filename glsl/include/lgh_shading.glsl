@@ -67,14 +67,25 @@ vec3 lghPointRadiance(SurfacePoint s, vec3 toViewer, vec3 offset, vec3 intensity
   return intensity * (evaluateBrdfCosine(s, toViewer, toLight) / max(d2, minDistance2));
 }
 
-// A grid light's blended contribution; `blend` = 0 where the light has no influence.
+// A grid light's blended contribution; `blend` = 0 where the light has no influence. `level` is
+// the light's level (lghLevelBlend), which the caller has checked is in use.
+vec3 lghGridLightRadianceAt(SurfacePoint s, vec3 toViewer, vec3 center, vec3 intensity,
+                            LghLevelBlend level, float minDistance2, out float blend) {
+  vec3 offset = center - s.position;
+  blend = lghBlendAt(level, length(offset));
+  if (blend <= 0.0) return vec3(0.0);
+  return blend * lghPointRadiance(s, toViewer, offset, intensity, minDistance2);
+}
+
 vec3 lghGridLightRadiance(SurfacePoint s, vec3 toViewer, GridLight light, LghFrame frame,
                           out float blend) {
-  vec3 offset = light.center - s.position;
-  blend = lghBlend(length(offset), int(light.level), frame.startLevel, frame.topLevel, frame.alpha,
-                   frame.h1);
-  if (blend <= 0.0) return vec3(0.0);
-  return blend * lghPointRadiance(s, toViewer, offset, light.intensity, frame.minDistance2);
+  int level = int(light.level);
+  blend = 0.0;
+  if (level < frame.startLevel || level > frame.topLevel) return vec3(0.0);
+  return lghGridLightRadianceAt(
+      s, toViewer, light.center, light.intensity,
+      lghLevelBlend(level, frame.startLevel, frame.topLevel, frame.alpha, frame.h1),
+      frame.minDistance2, blend);
 }
 
 // ---- lights of a frame ----------------------------------------------------------------------

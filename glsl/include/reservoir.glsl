@@ -35,8 +35,16 @@ uint reservoirPixelSeed(uint frameSeed, uint pixelIndex) {
   return reservoirHash(frameSeed ^ reservoirHash(pixelIndex));
 }
 
+// reservoirLightSeed in two steps, for passes that stream one light into many pixels: the light's
+// hash is the same for all of them.
+uint reservoirLightHash(uint lightIndex) { return reservoirHash(lightIndex); }
+
+uint reservoirLightSeedOfHash(uint pixelSeed, uint lightHash) {
+  return reservoirHash(pixelSeed + lightHash);
+}
+
 uint reservoirLightSeed(uint pixelSeed, uint lightIndex) {
-  return reservoirHash(pixelSeed + reservoirHash(lightIndex));
+  return reservoirLightSeedOfHash(pixelSeed, reservoirLightHash(lightIndex));
 }
 
 // Stream 0: the replacement decision; streams 1..3: the jitter along x, y, z.

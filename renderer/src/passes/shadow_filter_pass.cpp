@@ -15,7 +15,6 @@ GLint location(GLuint program, const char* name) { return glGetUniformLocation(p
 
 // Normals must agree closely (cos^64: 0.5 at 8.4 degrees); taps more than a few footprints off
 // the pixel's tangent plane hardly count. Both fixed: the paper gives no values.
-constexpr float kNormalPower = 64.0F;
 constexpr float kPlaneSigma = 1.0F;
 
 // World size of a pixel at distance d: d * x + y.
@@ -86,7 +85,6 @@ void ShadowFilterPass::atrous(int step, const CameraMatrices& camera, const Fram
                       glm::value_ptr(camera.position));
   const glm::vec2 footprint = pixelFootprint(camera, frame.height);
   glProgramUniform2f(program, location(program, "uFootprint"), footprint.x, footprint.y);
-  glProgramUniform1f(program, location(program, "uNormalPower"), kNormalPower);
   glProgramUniform1f(program, location(program, "uPlaneSigma"), kPlaneSigma);
   bindGBuffer(frame.gbuffer);
   glBindTextureUnit(LGH_UNIT_PASS_INPUT, input);
