@@ -1,11 +1,14 @@
 #include "vk/acceleration_scene.hpp"
 
+#include <new>
+
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "core/stopwatch.hpp"
 #include "scene/scene.hpp"
 #include "vk/bottom_levels.hpp"
+#include "vk/deferred_release.hpp"
 #include "vk/one_time_commands.hpp"
 #include "vk/scene_geometry.hpp"
 #include "vk/timestamp_queries.hpp"
@@ -79,6 +82,7 @@ std::unique_ptr<AccelerationScene> AccelerationScene::build(
   // Where the wall time goes (the log line): packing, the geometry's buffers, the rest of the
   // allocations and recording, and the one submission's round trip.
   const Stopwatch wallClock;
+  device->deferredRelease().collect();
   const PackedGeometry geometry = packGeometry(scene);
   const double packMs = wallClock.elapsedMs();
   BottomLevelBuilds bottomBuilds(*device, geometry);
@@ -115,7 +119,19 @@ AccelerationScene::AccelerationScene(std::shared_ptr<const VulkanDevice> device,
       bottomLevels_(std::move(bottomLevels)),
       topLevel_(std::move(topLevel)) {}
 
-AccelerationScene::~AccelerationScene() { device_->waitIdleNoThrow(); }
+AccelerationScene::~AccelerationScene() {
+  struct Structures {
+    std::vector<AccelerationStructure> bottomLevels;
+    AccelerationStructure topLevel;
+  };
+  try {
+    device_->deferredRelease().release(
+        device_->queue(),
+        std::make_shared<Structures>(Structures{std::move(bottomLevels_), std::move(topLevel_)}));
+  } catch (const std::bad_alloc&) {
+    device_->waitIdleNoThrow();  // the members, whatever was not moved, go right after this
+  }
+}
 
 std::size_t AccelerationScene::gpuBytes() const {
   ::vk::DeviceSize bytes = topLevel_.memoryBytes();

@@ -18,7 +18,7 @@ class AccelerationScene final : public TraceScene {
   // Throws vk::SystemError on a failing call, lgh::Error(TooLarge) past 2^32 vertices or indices.
   static std::unique_ptr<AccelerationScene> build(std::shared_ptr<const VulkanDevice> device,
                                                   const Scene& scene);
-  // Waits for the device first: a trace in flight may still read the structures.
+  // Hands the structures to the device's deferred release: a trace in flight may still read them.
   ~AccelerationScene() override;
   AccelerationScene(const AccelerationScene&) = delete;
   AccelerationScene& operator=(const AccelerationScene&) = delete;

@@ -188,7 +188,7 @@ const VplBuffers& LightPathTracer::buffers(std::uint32_t vplCount, Transport tra
       vpls_ && shared_.transport == transport ? std::max(bytes, shared_.vpls.size) : bytes;
   vpls_.reset();
   const std::uint64_t generation = shared_.generation + 1;
-  shared_ = VplBuffers{.transport = transport, .generation = generation};
+  shared_ = VplBuffers{.transport = transport, .generation = generation, .vpls = {}};
   vpls_.emplace(createSharedBuffer(*device_, size, transport));
   shared_.vpls = describeShared(*vpls_, transport);
   spdlog::debug("vulkan: VPL buffer, generation {}: {} bytes ({})", generation, size,

@@ -101,7 +101,8 @@ VulkanDevice::VulkanDevice(::vk::raii::Instance instance, ::vk::raii::PhysicalDe
       limits_(readLimits(physical_, capabilities_.rayTracingPipeline, queueFamily_)),
       memory_(physical_.getMemoryProperties()),
       info_(describe(physical_, capabilities_)),
-      oneTimeCommands_(std::make_unique<OneTimeCommands>(*this)) {}
+      oneTimeCommands_(std::make_unique<OneTimeCommands>(*this)),
+      deferredRelease_(std::make_unique<DeferredRelease>(device_)) {}
 
 void VulkanDevice::waitIdleNoThrow() const noexcept {
   try {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "vk/deferred_release.hpp"
 #include "vk/device_capabilities.hpp"
 #include "vk/one_time_commands.hpp"
 #include "vk/shadow_tracer.hpp"
@@ -45,6 +46,9 @@ class VulkanDevice {
   // The reused command buffer of the builds and uploads that are waited for (submitAndWait).
   OneTimeCommands& oneTimeCommands() const { return *oneTimeCommands_; }
 
+  // Holds objects until the work submitted so far is done (vk/deferred_release.hpp).
+  DeferredRelease& deferredRelease() const { return *deferredRelease_; }
+
   // Waits for the queue to finish; for destructors, so it throws nothing (a lost device has
   // nothing left to wait for).
   void waitIdleNoThrow() const noexcept;
@@ -63,6 +67,7 @@ class VulkanDevice {
   TracerInfo info_;
   // Declared after device_: destroyed before it.
   std::unique_ptr<OneTimeCommands> oneTimeCommands_;
+  std::unique_ptr<DeferredRelease> deferredRelease_;
 };
 
 }  // namespace lgh::vk
