@@ -248,8 +248,7 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   report.image = readLinearOutput(targets_);
   const double readbackMs = readback.elapsedMs();
   timer.collect(report.timings);
-  report.timings.rows.insert(report.timings.rows.end(), report.deferredRows.rows.begin(),
-                             report.deferredRows.rows.end());
+  report.timings.appendMerged(report.deferredRows);
   report.deferredRows = {};
   report.timings.add("readback", TimingRow::Clock::Cpu, readbackMs);
 }

@@ -8,6 +8,7 @@
 //    lights deposit their power;
 //  - the light paths' timing rows and decisions; the request's conflicts; no Vulkan: 503.
 // The golden image of the demo with one bounce is in test_render_golden.cpp.
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -271,6 +272,11 @@ TEST_F(GlobalIllumination, VplCountLayoutAndDeterminism) {
                           "lgh build", "lgh lighting"}) {
     EXPECT_GE(first.report.timings.get(row), 0.0) << row;
   }
+  // GL's wait for the light paths and their Vulkan timestamps are one row: the frame's GPU total
+  // counts the generation once.
+  EXPECT_EQ(std::count_if(first.report.timings.rows.begin(), first.report.timings.rows.end(),
+                          [](const lgh::TimingRow& row) { return row.name == "gi vpls"; }),
+            1);
 }
 
 TEST_F(GlobalIllumination, BothTracingPathsGiveTheSameVpls) {

@@ -105,5 +105,42 @@ TEST(TimingTable, ToJsonIsArrayOfPassClockMs) {
   EXPECT_EQ(TimingTable{}.toJson(), nlohmann::json::array());
 }
 
+// The frame's GL rows, then the Vulkan side's: the light paths timed by GL's wait for them
+// ("gi vpls", 0.6) and by their own timestamps ("gi vpls", 0.5, with its steps). One row, the
+// larger time, its steps under it; the rest appended; the work counted once in the total.
+TEST(TimingTable, AppendMergedJoinsTheSameWorkTimedByBothApis) {
+  TimingTable frame;
+  frame.add("submit", TimingRow::Clock::Cpu, 3.0);
+  frame.add("gbuffer", TimingRow::Clock::Gpu, 2.0);
+  frame.add("gi vpls", TimingRow::Clock::Gpu, 0.6);
+  frame.add("lgh build", TimingRow::Clock::Gpu, 0.3);
+  frame.add("lgh bounds", TimingRow::Clock::Gpu, 0.1, 1);
+  TimingTable vulkan;
+  vulkan.add("gi vpls", TimingRow::Clock::Gpu, 0.5);
+  vulkan.add("gi emit", TimingRow::Clock::Gpu, 0.2, 1);
+  vulkan.add("gi rays", TimingRow::Clock::Gpu, 0.25, 1);
+  vulkan.add("gi transfer", TimingRow::Clock::Cpu, 0.0);
+  vulkan.add("shadow rays", TimingRow::Clock::Gpu, 1.5);
+  frame.appendMerged(vulkan);
+  std::vector<std::string> names;
+  for (const TimingRow& row : frame.rows) names.push_back(row.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"submit", "gbuffer", "gi vpls", "gi emit", "gi rays",
+                                             "lgh build", "lgh bounds", "gi transfer",
+                                             "shadow rays"}));
+  EXPECT_DOUBLE_EQ(frame.get("gi vpls"), 0.6);
+  EXPECT_EQ(frame.rows[3].depth, 1);
+  EXPECT_DOUBLE_EQ(frame.gpuTotal(), 2.0 + 0.6 + 0.3 + 1.5);
+}
+
+TEST(TimingTable, AppendMergedKeepsTheLargerOfTheTwoTimes) {
+  TimingTable frame;
+  frame.add("gi vpls", TimingRow::Clock::Gpu, 0.1);  // staging copies: GL timed only the copy
+  TimingTable vulkan;
+  vulkan.add("gi vpls", TimingRow::Clock::Gpu, 0.9);
+  frame.appendMerged(vulkan);
+  ASSERT_EQ(frame.rows.size(), 1U);
+  EXPECT_DOUBLE_EQ(frame.gpuTotal(), 0.9);
+}
+
 }  // namespace
 }  // namespace lgh

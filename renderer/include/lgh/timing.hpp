@@ -22,6 +22,11 @@ struct TimingTable {
   void add(std::string name, TimingRow::Clock clock, double ms, int depth = 0);
   // Milliseconds of the row with this name; -1 when absent.
   double get(const std::string& name) const;
+  // Appends `later`'s rows. A depth-0 GPU row of `later` whose name is a depth-0 GPU row here
+  // is the same work timed twice (a GL pass that waits on the GPU for a Vulkan submission, and
+  // that submission's own timestamps): it becomes one row with the larger time, its nested rows
+  // under it, so that gpuTotal() counts the work once.
+  void appendMerged(const TimingTable& later);
   // The sum of the depth-0 GPU rows (nested steps are inside their pass's time).
   double gpuTotal() const;
   // A fixed-width table for terminals.

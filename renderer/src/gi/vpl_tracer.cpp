@@ -127,15 +127,10 @@ void VplTracer::collectTimings(GiTracing& tracing, TimingTable& table) {
   if (!traced_) return;
   traced_ = false;
   const vk::LightPathTimings vulkan = tracing.collectLightPathTimings();
-  // GL's span holds the submission where GL waits for it on the GPU (interop semaphores); with
-  // staging copies it holds only the copy, and the submission's own span is the generation.
-  auto whole = std::find_if(table.rows.begin(), table.rows.end(),
-                            [](const TimingRow& row) { return row.name == "gi vpls"; });
-  if (whole != table.rows.end()) {
-    whole->milliseconds = std::max(whole->milliseconds, vulkan.totalMs);
-  } else {
-    table.add("gi vpls", TimingRow::Clock::Gpu, vulkan.totalMs);
-  }
+  // GL's span of the same name holds the submission where GL waits for it on the GPU (interop
+  // semaphores); with staging copies it holds only the copy, and the submission's own span is the
+  // generation. The frame's table keeps the larger (TimingTable::appendMerged).
+  table.add("gi vpls", TimingRow::Clock::Gpu, vulkan.totalMs);
   insertNestedRow(table, "gi vpls", {"gi emit", TimingRow::Clock::Gpu, vulkan.emitMs, 0});
   for (int bounce = 1; bounce <= bounces_; ++bounce) {
     insertNestedRow(table, "gi vpls",

@@ -19,6 +19,27 @@ void TimingTable::add(std::string name, TimingRow::Clock clock, double ms, int d
   rows.push_back({std::move(name), clock, ms, depth});
 }
 
+void TimingTable::appendMerged(const TimingTable& later) {
+  auto row = later.rows.begin();
+  while (row != later.rows.end()) {
+    auto subtreeEnd = std::next(row);
+    while (subtreeEnd != later.rows.end() && subtreeEnd->depth > row->depth) ++subtreeEnd;
+    const auto same = std::find_if(rows.begin(), rows.end(), [&](const TimingRow& existing) {
+      return existing.depth == 0 && existing.clock == TimingRow::Clock::Gpu &&
+             existing.name == row->name;
+    });
+    if (row->depth == 0 && row->clock == TimingRow::Clock::Gpu && same != rows.end()) {
+      same->milliseconds = std::max(same->milliseconds, row->milliseconds);
+      auto after = std::next(same);
+      while (after != rows.end() && after->depth > 0) ++after;
+      rows.insert(after, std::next(row), subtreeEnd);
+    } else {
+      rows.insert(rows.end(), row, subtreeEnd);
+    }
+    row = subtreeEnd;
+  }
+}
+
 double TimingTable::get(const std::string& name) const {
   const auto it = std::find_if(rows.begin(), rows.end(),
                                [&](const TimingRow& row) { return row.name == name; });
