@@ -168,8 +168,8 @@ void addRenderFlags(CLI::App& app, DaemonConfig& config, RawFlags& raw) {
       ->group(group);
   app.add_option("--scene-parsers", config.sceneParsers,
                  "scene parser worker processes per render worker: the scenes it draws next "
-                 "parse side by side (each process has --scene-worker-memory-mb); 0: a quarter "
-                 "of the hardware threads, at least 1 and at most 4")
+                 "parse side by side (each process has --scene-worker-memory-mb); 0: half the "
+                 "hardware threads, at least 1 and at most 8")
       ->envname("LGHD_SCENE_PARSERS")
       ->check(CLI::Range(0, 64))
       ->capture_default_str()
@@ -378,7 +378,7 @@ int OutputOptions::encoderCount() const {
 }
 
 int DaemonConfig::sceneParserCount() const {
-  return sceneParsers > 0 ? sceneParsers : std::clamp(lgh::TaskPool::hardwareThreads() / 4, 1, 4);
+  return sceneParsers > 0 ? sceneParsers : std::clamp(lgh::TaskPool::hardwareThreads() / 2, 1, 8);
 }
 
 std::size_t OutputOptions::frameLimit() const {
