@@ -136,11 +136,10 @@ void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached
     displayPass_.run(output, pixels, targets_);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glFlush();  // the GPU starts on the frame while the Vulkan side's timings are waited for
-  FrameReport deferred;  // rows timed by Vulkan: the light paths', then the shadow rays'
-  if (lghLighting_) lghLighting_->collectTimings(deferred.timings);
-  shadows_.collectTimings(deferred);
-  report.deferredRows = std::move(deferred.timings);
+  glFlush();  // the GPU starts on the frame while the CPU goes on
+  // Rows timed by Vulkan, the light paths' then the shadow rays', read when the frame is taken.
+  if (lghLighting_) lghLighting_->collectTimings(report);
+  shadows_.collectTimings(report);
   report.decide("lighting", lgh.enabled ? "direct+lgh" : "direct");
   report.decide("lights", std::to_string(lights.size()));
   report.decide("texture_memory", textureMemoryText(cached.gpu->textureMemory()));
@@ -248,8 +247,7 @@ void FramePipeline::render(const RenderRequest& request, const CachedScene& cach
   report.image = readLinearOutput(targets_);
   const double readbackMs = readback.elapsedMs();
   timer.collect(report.timings);
-  report.timings.appendMerged(report.deferredRows);
-  report.deferredRows = {};
+  report.timings.appendMerged(report.writeLateRows());
   report.timings.add("readback", TimingRow::Clock::Cpu, readbackMs);
 }
 

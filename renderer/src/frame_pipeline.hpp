@@ -39,7 +39,7 @@ class FramePipeline {
 
   // Issues the frame's passes, the composite writing the output target for `pixels`; nothing is
   // read back and the GPU timer is not read (its rows come once the frame is done). The shadow
-  // tracer's rows go to report.deferredRows.
+  // tracer's rows are written by report.lateRows when the frame is taken.
   void draw(const RenderRequest& request, const CachedScene& scene, gl::GpuTimer& timer,
             FrameReport& report, OutputPixels pixels, LghFrameProbe* probe = nullptr);
   // Issues the copy of the last frame's output into `packBuffer` as `layout`, timed as the GPU

@@ -262,7 +262,7 @@ RenderResult Renderer::Impl::take(const std::deque<PendingFrame>::iterator& fram
   result.sceneCacheHit = frame->sceneCacheHit;
   result.timings = std::move(report.timings);
   result.timings.rows.insert(result.timings.rows.end(), gpuRows.rows.begin(), gpuRows.rows.end());
-  result.timings.appendMerged(report.deferredRows);
+  result.timings.appendMerged(report.writeLateRows());
   result.decisions = std::move(report.decisions);
   result.warnings = std::move(report.warnings);
   spareTimers.push_back(std::move(frame->timer));

@@ -61,10 +61,9 @@ double GiTracing::traceLightPaths(const Session& session, const vk::LightPathSce
   }
 }
 
-vk::LightPathTimings GiTracing::collectLightPathTimings() {
-  vk::ShadowTracer* tracer = device_ != nullptr ? device_->tracer() : nullptr;
-  if (tracer == nullptr || !vplTransport_) return {};
-  return tracer->collectLightPathTimings();
+ShadowDevice::SubmissionMark GiTracing::lightPathMark() const {
+  if (device_ == nullptr || !vplTransport_) return {};
+  return device_->mark();
 }
 
 double GiTracing::collectGpuMs() {

@@ -48,8 +48,10 @@ class GiTracing {
   // error handling of trace(). Returns the CPU milliseconds of the hand-over (VplTransport).
   double traceLightPaths(const Session& session, const vk::LightPathScene& surfaces,
                          const vk::LightPathBatch& batch);
-  // The Vulkan timings of the light paths since the last call.
-  vk::LightPathTimings collectLightPathTimings();
+  // Where the light paths' submissions stood after this frame's (ShadowDevice::mark); the
+  // epoch is 0 when the frame traced none.
+  ShadowDevice::SubmissionMark lightPathMark() const;
+  ShadowDevice* device() const { return device_; }
 
  private:
   ShadowDevice* device_;

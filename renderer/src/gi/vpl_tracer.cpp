@@ -52,20 +52,6 @@ void dispatchGi(std::uint32_t items) {
   glDispatchCompute(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX, 1);
 }
 
-void insertNestedRow(TimingTable& table, const std::string& parent, TimingRow row) {
-  auto it = std::find_if(table.rows.begin(), table.rows.end(),
-                         [&](const TimingRow& existing) { return existing.name == parent; });
-  if (it == table.rows.end()) {
-    table.rows.push_back(std::move(row));
-    return;
-  }
-  const int depth = it->depth;
-  row.depth = depth + 1;
-  ++it;
-  while (it != table.rows.end() && it->depth > depth) ++it;
-  table.rows.insert(it, std::move(row));
-}
-
 // Zeroes slots [from, count): the ones no path writes this frame.
 void VplTracer::clearSlots(GLuint vpls, int from, int count) {
   if (count <= from) return;
@@ -122,23 +108,30 @@ VplLayout VplTracer::generate(const VplTracingInputs& inputs, const CachedScene&
   return layout;
 }
 
-void VplTracer::collectTimings(GiTracing& tracing, TimingTable& table) {
-  if (asBuildMs_ >= 0.0) table.add("gi as build", TimingRow::Clock::Gpu, asBuildMs_);
-  if (!traced_) return;
+void VplTracer::collectTimings(const GiTracing& tracing, FrameReport& report) {
+  const bool traced = traced_;
   traced_ = false;
-  const vk::LightPathTimings vulkan = tracing.collectLightPathTimings();
-  // GL's span of the same name holds the submission where GL waits for it on the GPU (interop
-  // semaphores); with staging copies it holds only the copy, and the submission's own span is the
-  // generation. The frame's table keeps the larger (TimingTable::appendMerged).
-  table.add("gi vpls", TimingRow::Clock::Gpu, vulkan.totalMs);
-  insertNestedRow(table, "gi vpls", {"gi emit", TimingRow::Clock::Gpu, vulkan.emitMs, 0});
-  for (int bounce = 1; bounce <= bounces_; ++bounce) {
-    insertNestedRow(table, "gi vpls",
-                    {fmt::format("gi bounce {}", bounce), TimingRow::Clock::Gpu,
-                     vulkan.bounceMs[static_cast<std::size_t>(bounce - 1)], 0});
-  }
-  insertNestedRow(table, "gi vpls", {"gi rays", TimingRow::Clock::Gpu, vulkan.raysMs, 0});
-  table.add("gi transfer", TimingRow::Clock::Cpu, transferMs_);
+  report.lateRows.push_back([device = tracing.device(), mark = tracing.lightPathMark(), traced,
+                             bounces = bounces_, asBuildMs = asBuildMs_,
+                             transferMs = transferMs_](TimingTable& table) {
+    if (asBuildMs >= 0.0) table.add("gi as build", TimingRow::Clock::Gpu, asBuildMs);
+    if (!traced) return;
+    // GL's span of the same name holds the submission where GL waits for it on the GPU (interop
+    // semaphores); with staging copies it holds only the copy, and the submission's own span is
+    // the generation. The frame's table keeps the larger (TimingTable::appendMerged).
+    const std::optional<vk::LightPathTimings> vulkan =
+        device != nullptr && mark.epoch != 0 ? device->lightPathTimings(mark) : std::nullopt;
+    if (vulkan) {
+      table.add("gi vpls", TimingRow::Clock::Gpu, vulkan->totalMs);
+      table.add("gi emit", TimingRow::Clock::Gpu, vulkan->emitMs, 1);
+      for (int bounce = 1; bounce <= bounces; ++bounce) {
+        table.add(fmt::format("gi bounce {}", bounce), TimingRow::Clock::Gpu,
+                  vulkan->bounceMs[static_cast<std::size_t>(bounce - 1)], 1);
+      }
+      table.add("gi rays", TimingRow::Clock::Gpu, vulkan->raysMs, 1);
+    }
+    table.add("gi transfer", TimingRow::Clock::Cpu, transferMs);
+  });
 }
 
 }  // namespace lgh

@@ -62,10 +62,12 @@ class VplTracer {
   VplLayout generate(const VplTracingInputs& inputs, const CachedScene& scene, GiTracing& tracing,
                      gl::SizedBuffer& vpls, gl::GpuTimer& timer, FrameReport& report);
 
-  // The rows of the last generate() that come after the GL timer: "gi vpls" (GL's span around
-  // the hand-over, or the Vulkan submission's where longer) with the Vulkan steps inside it ("gi
-  // emit", "gi bounce <b>", "gi rays"), "gi as build", "gi transfer" (CPU).
-  void collectTimings(GiTracing& tracing, TimingTable& table);
+  // Adds the writer of the last generate()'s rows that come after the GL timer to
+  // report.lateRows (read when the frame is taken): "gi as build", "gi vpls" (the Vulkan
+  // submission's span; TimingTable::appendMerged keeps GL's span around the hand-over where that
+  // is longer) with the Vulkan steps inside it ("gi emit", "gi bounce <b>", "gi rays"), "gi
+  // transfer" (CPU).
+  void collectTimings(const GiTracing& tracing, FrameReport& report);
 
  private:
   void clearSlots(GLuint vpls, int from, int count);
@@ -81,8 +83,5 @@ class VplTracer {
 // index as (group.y * groups.x + group.x) * 64 + local.x).
 void dispatchGi(std::uint32_t items);
 
-// Inserts `row` after the row named `parent` and the rows nested in it (at the parent's depth
-// + 1); appends it when there is no such parent.
-void insertNestedRow(TimingTable& table, const std::string& parent, TimingRow row);
 
 }  // namespace lgh

@@ -75,8 +75,8 @@ void LghFrameLighting::traceVpls(const LghGiInputs& gi, const CachedScene& cache
   vplCount_ = vplLayout_.count;
 }
 
-void LghFrameLighting::collectTimings(TimingTable& table) {
-  if (vplTracer_ && giTracing_ != nullptr) vplTracer_->collectTimings(*giTracing_, table);
+void LghFrameLighting::collectTimings(FrameReport& report) {
+  if (vplTracer_ && giTracing_ != nullptr) vplTracer_->collectTimings(*giTracing_, report);
   giTracing_ = nullptr;
 }
 

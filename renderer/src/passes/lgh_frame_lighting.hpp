@@ -106,8 +106,9 @@ class LghFrameLighting {
            const BrdfFeatures& brdf, FrameTargets& frame, gl::GpuTimer& timer, FrameReport& report,
            LghFrameProbe* probe = nullptr, const LghGiInputs* gi = nullptr);
 
-  // The rows of the last run that come after the GL timer (the light paths' Vulkan time).
-  void collectTimings(TimingTable& table);
+  // Adds the writer of the last run's rows that come after the GL timer (the light paths' Vulkan
+  // time) to report.lateRows.
+  void collectTimings(FrameReport& report);
 
   // The k shadow samples per pixel that the last run picked (vec4(position, weight) at
   // [pixel * k + s], GL row order), for the shadow rays; {0, 0} when it lit nothing.

@@ -57,6 +57,31 @@ vk::ShadowTracer* ShadowDevice::tracer() {
   return tracer_.get();
 }
 
+ShadowDevice::SubmissionMark ShadowDevice::mark() const {
+  if (!tracer_) return {};
+  return {.epoch = epoch_, .trace = tracer_->lastTrace(), .lightPaths = tracer_->lastLightPathTrace()};
+}
+
+std::optional<double> ShadowDevice::traceGpuMs(const SubmissionMark& mark) {
+  if (!tracer_ || mark.epoch != epoch_) return std::nullopt;
+  try {
+    return tracer_->collectTimingsThrough(mark.trace).traceGpuMs;
+  } catch (const Error& error) {
+    spdlog::warn("shadows: the shadow rays' GPU time could not be read: {}", error.message());
+    return std::nullopt;
+  }
+}
+
+std::optional<vk::LightPathTimings> ShadowDevice::lightPathTimings(const SubmissionMark& mark) {
+  if (!tracer_ || mark.epoch != epoch_) return std::nullopt;
+  try {
+    return tracer_->collectLightPathTimingsThrough(mark.lightPaths);
+  } catch (const Error& error) {
+    spdlog::warn("gi: the light paths' GPU times could not be read: {}", error.message());
+    return std::nullopt;
+  }
+}
+
 ShadowInfo ShadowDevice::info(const std::string& transport) const {
   ShadowInfo info;
   if (!tracer_) {

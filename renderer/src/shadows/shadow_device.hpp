@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "lgh/request.hpp"
@@ -38,6 +39,21 @@ class ShadowDevice {
   // call built them.
   const vk::TraceScene& traceScene(const CachedScene& scene, double* buildMs = nullptr,
                                    double* buildWallMs = nullptr);
+
+  // Where the tracer's submissions stood when a frame was drawn: the frame reads the GPU times
+  // of its own submissions when it is taken (its GL fence has passed, so they are done), and
+  // drawing the next frame waits for none of them.
+  struct SubmissionMark {
+    std::uint64_t epoch = 0;       // 0: no tracer
+    std::uint64_t trace = 0;       // the last shadow-ray trace
+    std::uint64_t lightPaths = 0;  // the last light-path submission
+  };
+  SubmissionMark mark() const;
+  // The GPU time of the shadow-ray traces up to the mark that nobody read yet; nullopt when the
+  // tracer has been replaced since the mark, or fails (logged: a frame's rows are not worth
+  // failing a frame for).
+  std::optional<double> traceGpuMs(const SubmissionMark& mark);
+  std::optional<vk::LightPathTimings> lightPathTimings(const SubmissionMark& mark);
 
  private:
   std::unique_ptr<vk::ShadowTracer> tracer_;

@@ -174,15 +174,20 @@ GLuint ShadowFrame::filterLgh(int iterations, const CameraMatrices& camera,
 }
 
 void ShadowFrame::collectTimings(FrameReport& report) {
-  if (buildMs_ >= 0.0) report.timings.add("shadow as build", TimingRow::Clock::Gpu, buildMs_);
-  // The build's wall time on the render thread: allocations and its waits besides the GPU's work.
-  if (buildWallMs_ >= 0.0) {
-    report.timings.add("shadow as build wall", TimingRow::Clock::Cpu, buildWallMs_);
-  }
-  if (!traced_ || device_ == nullptr || device_->tracer() == nullptr) return;
-  report.timings.add("shadow rays", TimingRow::Clock::Gpu,
-                     device_->tracer()->collectTimings().traceGpuMs);
-  report.timings.add("shadow transfer", TimingRow::Clock::Cpu, transferMs_);
+  const bool traced = traced_ && device_ != nullptr && device_->tracer() != nullptr;
+  const ShadowDevice::SubmissionMark mark = traced ? device_->mark() : ShadowDevice::SubmissionMark{};
+  report.lateRows.push_back([device = device_, mark, traced, buildMs = buildMs_,
+                             buildWallMs = buildWallMs_,
+                             transferMs = transferMs_](TimingTable& table) {
+    if (buildMs >= 0.0) table.add("shadow as build", TimingRow::Clock::Gpu, buildMs);
+    // The build's wall time on the render thread: allocations and waits besides the GPU's work.
+    if (buildWallMs >= 0.0) table.add("shadow as build wall", TimingRow::Clock::Cpu, buildWallMs);
+    if (!traced) return;
+    if (const std::optional<double> gpuMs = device->traceGpuMs(mark)) {
+      table.add("shadow rays", TimingRow::Clock::Gpu, *gpuMs);
+    }
+    table.add("shadow transfer", TimingRow::Clock::Cpu, transferMs);
+  });
 }
 
 }  // namespace lgh

@@ -71,7 +71,8 @@ class ShadowFrame {
   // How rays reach Vulkan ("interop", "interop-finish", "staging"); "" before the first batch.
   std::string transportName() const { return transport_ ? transport_->name() : std::string(); }
 
-  // Adds the Vulkan rows (acceleration structures, rays) and the CPU transfer row.
+  // Adds the writer of the Vulkan rows (acceleration structures, rays) and the CPU transfer row
+  // to report.lateRows: the rays' GPU time is read when the frame is taken.
   void collectTimings(FrameReport& report);
 
  private:

@@ -127,8 +127,7 @@ void HitTracer::trace(const AccelerationScene& scene, TracePath path, const HitB
 }
 
 TraceTimings HitTracer::collectTimings() {
-  submissions_.retireAll();
-  return TraceTimings{.traceGpuMs = submissions_.takeGpuMs()};
+  return TraceTimings{.traceGpuMs = submissions_.takeGpuMs(submissions_.lastSubmission())};
 }
 
 }  // namespace lgh::vk

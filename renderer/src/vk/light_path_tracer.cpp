@@ -389,6 +389,7 @@ void LightPathTracer::submit(bool useSemaphores) {
                        .pSignalSemaphores = useSemaphores ? &signal : nullptr},
       *fence_);
   inFlight_ = true;
+  ++submitted_;
 }
 
 void LightPathTracer::trace(const AccelerationScene& scene, TracePath path,
@@ -411,12 +412,14 @@ void LightPathTracer::retire() {
   if (!inFlight_) return;
   waitForFence(*device_, *fence_, "the light paths");
   inFlight_ = false;
-  banked_.traced = true;
+  LightPathTimings& timings = banked_.emplace_back(submitted_, LightPathTimings{}).second;
+  if (banked_.size() > kMaxBanked) banked_.pop_front();
+  timings.traced = true;
   if (!queries_) return;
   const std::uint32_t count = 2 + 2 * inFlightBounces_;
   const auto results = queries_->getResults<std::uint64_t>(
       0, count, count * sizeof(std::uint64_t), sizeof(std::uint64_t),
-      ::vk::QueryResultFlagBits::e64 | ::vk::QueryResultFlagBits::eWait);
+      ::vk::QueryResultFlagBits::e64);  // after the fence: available (see TimestampQueries)
   if (results.first != ::vk::Result::eSuccess) return;
   const std::vector<std::uint64_t>& ticks = results.second;
   const auto ms = [&](std::uint32_t from, std::uint32_t to) {
@@ -424,19 +427,27 @@ void LightPathTracer::retire() {
                ? 0.0
                : static_cast<double>(ticks[to] - ticks[from]) * periodNs_ * 1e-6;
   };
-  banked_.totalMs += ms(0, count - 1);
-  banked_.emitMs += ms(0, 1);
+  timings.totalMs = ms(0, count - 1);
+  timings.emitMs = ms(0, 1);
   for (std::uint32_t bounce = 1; bounce <= inFlightBounces_; ++bounce) {
-    banked_.raysMs += ms(2 * bounce - 1, 2 * bounce);
-    banked_.bounceMs[bounce - 1] += ms(2 * bounce, 2 * bounce + 1);
+    timings.raysMs += ms(2 * bounce - 1, 2 * bounce);
+    timings.bounceMs[bounce - 1] = ms(2 * bounce, 2 * bounce + 1);
   }
 }
 
-LightPathTimings LightPathTracer::collectTimings() {
-  retire();
-  const LightPathTimings timings = banked_;
-  banked_ = {};
-  return timings;
+LightPathTimings LightPathTracer::collectTimings(std::uint64_t through) {
+  if (inFlight_ && submitted_ <= through) retire();
+  LightPathTimings sum;
+  while (!banked_.empty() && banked_.front().first <= through) {
+    const LightPathTimings& timings = banked_.front().second;
+    sum.traced = true;
+    sum.totalMs += timings.totalMs;
+    sum.emitMs += timings.emitMs;
+    sum.raysMs += timings.raysMs;
+    for (std::size_t b = 0; b < sum.bounceMs.size(); ++b) sum.bounceMs[b] += timings.bounceMs[b];
+    banked_.pop_front();
+  }
+  return sum;
 }
 
 }  // namespace lgh::vk

@@ -9,7 +9,9 @@
 
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <optional>
+#include <utility>
 
 #include "vk/device_buffer.hpp"
 #include "vk/exported_semaphores.hpp"
@@ -35,7 +37,13 @@ class LightPathTracer {
   SemaphoreFds exportSemaphores();
   void trace(const AccelerationScene& scene, TracePath path, const LightPathScene& surfaces,
              const LightPathBatch& batch, bool useSemaphores);
-  LightPathTimings collectTimings();
+  // The number of the last submission (0: none yet).
+  std::uint64_t lastSubmission() const { return submitted_; }
+  // The timings of submissions up to and including number `through` that no earlier call
+  // returned, summed; waits for the one in flight only when it is one of them.
+  LightPathTimings collectTimings(std::uint64_t through);
+  // Banked timings kept for frames that never ask: beyond this, the oldest go.
+  static constexpr std::size_t kMaxBanked = 64;
 
  private:
   // The buffers that never leave Vulkan: rays and hits (the trace's), the paths' state, and the
@@ -59,7 +67,7 @@ class LightPathTracer {
   void writeSets(const AccelerationScene& scene) const;
   void record(const TraceRecorder& recorder, const LightPathBatch& batch) const;
   void submit(bool useSemaphores);
-  // Waits for the submission in flight, if any, and banks its timings.
+  // Waits for the submission in flight, if any, and banks its timings under its number.
   void retire();
 
   const VulkanDevice* device_;
@@ -78,7 +86,8 @@ class LightPathTracer {
   double periodNs_ = 0.0;
   bool inFlight_ = false;
   std::uint32_t inFlightBounces_ = 0;
-  LightPathTimings banked_;
+  std::uint64_t submitted_ = 0;  // the last submission's number; the one in flight if any
+  std::deque<std::pair<std::uint64_t, LightPathTimings>> banked_;  // oldest first
   std::optional<LightPathSurfaces> surfaces_;
   std::optional<Working> working_;
   std::optional<Inputs> inputs_;

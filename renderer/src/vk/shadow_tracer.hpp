@@ -229,9 +229,14 @@ class ShadowTracer {
   virtual void trace(const TraceScene& scene, TracePath path, const RayBatchShape& shape,
                      const TraceParams& params, bool useSemaphores) = 0;
 
-  // The GPU time of the traces since the last call (waits for the GPU if they are still
-  // running), summed.
-  virtual TraceTimings collectTimings() = 0;
+  // Traces are numbered 1, 2, ... by the tracer: the number of the last trace() (0: none).
+  virtual std::uint64_t lastTrace() const = 0;
+  // The GPU time of the traces up to and including number `through` that no earlier call
+  // returned, summed; waits for those still running, never for later ones. A frame asks for its
+  // own when it is taken, so that the next frame is drawn without waiting for this one's rays.
+  virtual TraceTimings collectTimingsThrough(std::uint64_t through) = 0;
+  // Every trace so far.
+  TraceTimings collectTimings() { return collectTimingsThrough(lastTrace()); }
 
   // Closest hits, with buffers, semaphores and timings of their own (the shadow rays' stay as
   // they are): the same contract as rayBuffers, exportSemaphores, trace and collectTimings.
@@ -250,7 +255,12 @@ class ShadowTracer {
   virtual void traceLightPaths(const TraceScene& scene, TracePath path,
                                const LightPathScene& surfaces, const LightPathBatch& batch,
                                bool useSemaphores) = 0;
-  virtual LightPathTimings collectLightPathTimings() = 0;
+  // As lastTrace / collectTimingsThrough / collectTimings, for the light paths' submissions.
+  virtual std::uint64_t lastLightPathTrace() const = 0;
+  virtual LightPathTimings collectLightPathTimingsThrough(std::uint64_t through) = 0;
+  LightPathTimings collectLightPathTimings() {
+    return collectLightPathTimingsThrough(lastLightPathTrace());
+  }
 };
 
 }  // namespace lgh::vk

@@ -19,7 +19,9 @@ class TimestampQueries {
   void begin(const ::vk::raii::CommandBuffer& commands, std::uint32_t pair) const;
   // Writes the pair's second timestamp once the work before has finished.
   void end(const ::vk::raii::CommandBuffer& commands, std::uint32_t pair) const;
-  // The milliseconds between the pair's timestamps, waiting for them to be written.
+  // The milliseconds between the pair's timestamps; 0 when they are not written yet. Read after
+  // the submission's fence: its queries are then available. No wait flag: lavapipe's wait for a
+  // query waits for the whole queue, later submissions too.
   double elapsedMs(std::uint32_t pair) const;
 
  private:

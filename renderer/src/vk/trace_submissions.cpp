@@ -27,7 +27,8 @@ TraceSubmissions::TraceSubmissions(const VulkanDevice& device, std::uint32_t slo
                                                 .commandBufferCount = slots}),
       fences_(createFences(device.device(), slots)),
       inFlight_(slots, false),
-      timestamps_(device, slots) {}
+      timestamps_(device, slots),
+      numberOf_(slots, 0) {}
 
 std::uint32_t TraceSubmissions::acquire() {
   const std::uint32_t slot = next_;
@@ -52,13 +53,15 @@ void TraceSubmissions::submit(std::uint32_t slot, ::vk::Semaphore wait,
                                            .pSignalSemaphores = signals ? &signal : nullptr},
                           *fences_[slot]);
   inFlight_[slot] = true;
+  numberOf_[slot] = ++submitted_;
 }
 
 void TraceSubmissions::retire(std::uint32_t slot) {
   if (!inFlight_[slot]) return;
   waitForFence(*device_, *fences_[slot], "a shadow trace");
   inFlight_[slot] = false;
-  bankedGpuMs_ += timestamps_.elapsedMs(slot);
+  banked_.emplace_back(numberOf_[slot], timestamps_.elapsedMs(slot));
+  if (banked_.size() > kMaxBanked) banked_.pop_front();
 }
 
 void TraceSubmissions::retireAll() {
@@ -67,9 +70,19 @@ void TraceSubmissions::retireAll() {
   for (std::uint32_t i = 0; i < slots; ++i) retire((next_ + i) % slots);
 }
 
-double TraceSubmissions::takeGpuMs() {
-  const double gpuMs = bankedGpuMs_;
-  bankedGpuMs_ = 0.0;
+double TraceSubmissions::takeGpuMs(std::uint64_t through) {
+  // Oldest first, as retireAll(), and only as far as `through`.
+  const auto slots = static_cast<std::uint32_t>(fences_.size());
+  for (std::uint32_t i = 0; i < slots; ++i) {
+    const std::uint32_t slot = (next_ + i) % slots;
+    if (inFlight_[slot] && numberOf_[slot] <= through) retire(slot);
+  }
+  double gpuMs = 0.0;
+  std::erase_if(banked_, [&](const std::pair<std::uint64_t, double>& entry) {
+    if (entry.first > through) return false;
+    gpuMs += entry.second;
+    return true;
+  });
   return gpuMs;
 }
 

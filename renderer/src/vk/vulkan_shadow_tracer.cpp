@@ -148,10 +148,10 @@ class VulkanShadowTracer final : public ShadowTracer {
     });
   }
 
-  TraceTimings collectTimings() override {
+  std::uint64_t lastTrace() const override { return submissions_.lastSubmission(); }
+  TraceTimings collectTimingsThrough(std::uint64_t through) override {
     return translateVulkanErrors("collectTimings", [&] {
-      submissions_.retireAll();
-      return TraceTimings{.traceGpuMs = submissions_.takeGpuMs()};
+      return TraceTimings{.traceGpuMs = submissions_.takeGpuMs(through)};
     });
   }
 
@@ -188,9 +188,10 @@ class VulkanShadowTracer final : public ShadowTracer {
       lightPaths_.trace(ownScene(scene), path, surfaces, batch, useSemaphores);
     });
   }
-  LightPathTimings collectLightPathTimings() override {
+  std::uint64_t lastLightPathTrace() const override { return lightPaths_.lastSubmission(); }
+  LightPathTimings collectLightPathTimingsThrough(std::uint64_t through) override {
     return translateVulkanErrors("collectLightPathTimings",
-                                 [&] { return lightPaths_.collectTimings(); });
+                                 [&] { return lightPaths_.collectTimings(through); });
   }
 
  private:
