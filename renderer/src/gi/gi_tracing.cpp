@@ -21,7 +21,7 @@ GiTracing::Session GiTracing::begin(const CachedScene& scene, ShadowTracing requ
   Session session;
   session.path = chooseTracePath(*tracer, requested);
   try {
-    session.scene = &device_->traceScene(scene, &session.asBuildMs);
+    session.scene = &device_->traceScene(scene, &session.asBuildGpuMs);
     if (!transport_ || epoch_ != device_->epoch()) {
       transport_ = std::make_unique<HitBatchTransport>(*tracer);
       vplTransport_ = std::make_unique<VplTransport>(*tracer);

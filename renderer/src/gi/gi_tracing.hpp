@@ -30,7 +30,8 @@ class GiTracing {
     vk::TracePath path = vk::TracePath::RayQuery;
     HitBatchTransport* transport = nullptr;
     VplTransport* vpls = nullptr;
-    double asBuildMs = -1.0;  // >= 0: this session built the acceleration structures
+    // Set when this session built the acceleration structures: their GPU time, read later.
+    std::function<double()> asBuildGpuMs;
   };
   // Everything a batch needs for `scene`. Throws lgh::Error(Unavailable) naming `field` when this
   // machine cannot trace (the tracer's reason in the message), Invalid for a tracing path the

@@ -64,7 +64,7 @@ VplLayout VplTracer::generate(const VplTracingInputs& inputs, const CachedScene&
                               FrameReport& report) {
   traced_ = false;
   transferMs_ = 0.0;
-  asBuildMs_ = -1.0;
+  asBuildGpuMs_ = {};
   const GiSettings& settings = inputs.settings;
   const Scene& scene = cached.scene;
   VplLayout layout;
@@ -72,7 +72,7 @@ VplLayout VplTracer::generate(const VplTracingInputs& inputs, const CachedScene&
   vpls.reserve(static_cast<GLsizeiptr>(std::max(layout.count, 1)) * kVplBytes);
 
   const GiTracing::Session session = tracing.begin(cached, inputs.tracing, "/settings/gi/enabled");
-  asBuildMs_ = session.asBuildMs;
+  asBuildGpuMs_ = session.asBuildGpuMs;
   const HitGeometry& geometry = HitGeometry::of(cached, inputs.materials);
   for (const std::string& warning : geometry.warnings()) report.warn(warning);
   const GiSourceTable table =
@@ -112,9 +112,11 @@ void VplTracer::collectTimings(const GiTracing& tracing, FrameReport& report) {
   const bool traced = traced_;
   traced_ = false;
   report.lateRows.push_back([device = tracing.device(), mark = tracing.lightPathMark(), traced,
-                             bounces = bounces_, asBuildMs = asBuildMs_,
+                             bounces = bounces_, asBuildGpuMs = asBuildGpuMs_,
                              transferMs = transferMs_](TimingTable& table) {
-    if (asBuildMs >= 0.0) table.add("gi as build", TimingRow::Clock::Gpu, asBuildMs);
+    if (const std::optional<double> ms = readBuildGpuMs(asBuildGpuMs)) {
+      table.add("gi as build", TimingRow::Clock::Gpu, *ms);
+    }
     if (!traced) return;
     // GL's span of the same name holds the submission where GL waits for it on the GPU (interop
     // semaphores); with staging copies it holds only the copy, and the submission's own span is

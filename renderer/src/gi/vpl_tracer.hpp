@@ -74,7 +74,7 @@ class VplTracer {
 
   std::vector<GpuLight> lights_;
   double transferMs_ = 0.0;
-  double asBuildMs_ = -1.0;
+  std::function<double()> asBuildGpuMs_;
   int bounces_ = 0;
   bool traced_ = false;
 };

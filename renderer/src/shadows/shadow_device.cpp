@@ -57,6 +57,17 @@ vk::ShadowTracer* ShadowDevice::tracer() {
   return tracer_.get();
 }
 
+std::optional<double> readBuildGpuMs(const std::function<double()>& reader) {
+  if (!reader) return std::nullopt;
+  try {
+    return reader();
+  } catch (const std::exception& error) {  // lgh::Error, or vk::SystemError from the wait
+    spdlog::warn("shadows: an acceleration-structure build's GPU time could not be read: {}",
+                 error.what());
+    return std::nullopt;
+  }
+}
+
 ShadowDevice::SubmissionMark ShadowDevice::mark() const {
   if (!tracer_) return {};
   return {.epoch = epoch_, .trace = tracer_->lastTrace(), .lightPaths = tracer_->lastLightPathTrace()};
@@ -120,7 +131,8 @@ vk::TracePath chooseTracePath(const vk::ShadowTracer& tracer, ShadowTracing requ
   return path;
 }
 
-const vk::TraceScene& ShadowDevice::traceScene(const CachedScene& scene, double* buildMs,
+const vk::TraceScene& ShadowDevice::traceScene(const CachedScene& scene,
+                                               std::function<double()>* buildGpuMs,
                                                double* buildWallMs) {
   TraceSceneSlot& slot = scene.trace;
   if (!slot.scene || slot.epoch != epoch_) {
@@ -128,7 +140,7 @@ const vk::TraceScene& ShadowDevice::traceScene(const CachedScene& scene, double*
     slot.scene.reset();
     slot.scene = tracer()->buildScene(scene.scene);
     slot.epoch = epoch_;
-    if (buildMs != nullptr) *buildMs = slot.scene->buildGpuMs();
+    if (buildGpuMs != nullptr) *buildGpuMs = slot.scene->buildGpuMsReader();
     if (buildWallMs != nullptr) *buildWallMs = wall.elapsedMs();
   }
   return *slot.scene;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -35,9 +36,11 @@ class ShadowDevice {
   // Drops the tracer after a failure (a lost device, say); the next tracer() makes a new one.
   void reset(const std::string& why);
   // The acceleration structures of `scene` on the tracer (which must exist): built on first use
-  // and after a new tracer, cached with the scene; `*buildMs` gets their GPU build time when this
-  // call built them.
-  const vk::TraceScene& traceScene(const CachedScene& scene, double* buildMs = nullptr,
+  // and after a new tracer, cached with the scene. When this call built them, `*buildGpuMs` gets
+  // the reader of their GPU build time (TraceScene::buildGpuMsReader: the build is not waited
+  // for here) and `*buildWallMs` the call's wall time.
+  const vk::TraceScene& traceScene(const CachedScene& scene,
+                                   std::function<double()>* buildGpuMs = nullptr,
                                    double* buildWallMs = nullptr);
 
   // Where the tracer's submissions stood when a frame was drawn: the frame reads the GPU times
@@ -61,6 +64,10 @@ class ShadowDevice {
   bool tried_ = false;
   std::uint64_t epoch_ = 0;
 };
+
+// The GPU time of an acceleration-structure build from ShadowDevice::traceScene's reader, when a
+// frame is taken: nullopt without a build, or when reading fails (logged, the row left out).
+std::optional<double> readBuildGpuMs(const std::function<double()>& reader);
 
 // The GL context's device UUID (GL_EXT_memory_object or GL_EXT_semaphore), or why there is none.
 bool glDeviceUuid(vk::DeviceUuid& uuid, std::string& whyNot);

@@ -65,13 +65,13 @@ ShadowRayLayout ShadowFrame::budget(const ShadowFrameInputs& inputs, FrameReport
 
 const vk::TraceScene& ShadowFrame::traceScene(vk::ShadowTracer& /*tracer*/,
                                               const CachedScene& scene) {
-  return device_->traceScene(scene, &buildMs_, &buildWallMs_);
+  return device_->traceScene(scene, &buildGpuMs_, &buildWallMs_);
 }
 
 void ShadowFrame::trace(const ShadowFrameInputs& inputs, const CachedScene& scene,
                         const FrameTargets& frame, gl::GpuTimer& timer, FrameReport& report) {
   traced_ = false;
-  buildMs_ = -1.0;
+  buildGpuMs_ = {};
   buildWallMs_ = -1.0;
   transferMs_ = 0.0;
   layout_ = {};
@@ -176,10 +176,12 @@ GLuint ShadowFrame::filterLgh(int iterations, const CameraMatrices& camera,
 void ShadowFrame::collectTimings(FrameReport& report) {
   const bool traced = traced_ && device_ != nullptr && device_->tracer() != nullptr;
   const ShadowDevice::SubmissionMark mark = traced ? device_->mark() : ShadowDevice::SubmissionMark{};
-  report.lateRows.push_back([device = device_, mark, traced, buildMs = buildMs_,
+  report.lateRows.push_back([device = device_, mark, traced, buildGpuMs = buildGpuMs_,
                              buildWallMs = buildWallMs_,
                              transferMs = transferMs_](TimingTable& table) {
-    if (buildMs >= 0.0) table.add("shadow as build", TimingRow::Clock::Gpu, buildMs);
+    if (const std::optional<double> ms = readBuildGpuMs(buildGpuMs)) {
+      table.add("shadow as build", TimingRow::Clock::Gpu, *ms);
+    }
     // The build's wall time on the render thread: allocations and waits besides the GPU's work.
     if (buildWallMs >= 0.0) table.add("shadow as build wall", TimingRow::Clock::Cpu, buildWallMs);
     if (!traced) return;

@@ -96,7 +96,7 @@ class ShadowFrame {
   RayBatchTransport::GlBuffers buffers_;
   GLuint lghSamples_ = 0;
   bool traced_ = false;
-  double buildMs_ = -1.0;
+  std::function<double()> buildGpuMs_;  // set when this frame built the scene's structures
   double buildWallMs_ = -1.0;
   double transferMs_ = 0.0;
 };

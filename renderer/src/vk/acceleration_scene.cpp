@@ -1,5 +1,6 @@
 #include "vk/acceleration_scene.hpp"
 
+#include <algorithm>
 #include <new>
 
 #include <fmt/format.h>
@@ -43,11 +44,11 @@ std::pair<BottomLevels, AccelerationStructure> buildCompacted(const VulkanDevice
   return {std::move(bottom), std::move(top)};
 }
 
-// A small scene: every structure in one buffer, built in one submission.
-std::pair<BottomLevels, AccelerationStructure> buildTogether(const VulkanDevice& device,
-                                                             const Scene& scene,
-                                                             BottomLevelBuilds& bottomBuilds,
-                                                             double& buildGpuMs, double& waitMs) {
+// A small scene: every structure in one buffer, built in one submission that nothing waits for
+// here; its GPU time goes to `buildGpuMs` when it is retired (OneTimeCommands).
+std::pair<BottomLevels, AccelerationStructure> buildTogether(
+    const VulkanDevice& device, const Scene& scene, BottomLevelBuilds& bottomBuilds,
+    const std::shared_ptr<double>& buildGpuMs, double& submitMs) {
   // Sized for every instance: those of meshes without triangles are left out of the build.
   TopLevelBuild topBuild(device, static_cast<std::uint32_t>(scene.instances.size()));
   const ::vk::DeviceSize topOffset =
@@ -63,15 +64,17 @@ std::pair<BottomLevels, AccelerationStructure> buildTogether(const VulkanDevice&
   const auto instances = tlasInstances(scene, meshAddresses(bottom));
   const TimestampQueries& timestamps = device.oneTimeCommands().timestamps();
   const Stopwatch submission;
-  submitAndWait(device, [&](const ::vk::raii::CommandBuffer& commands) {
-    bottomBuilds.recordUpload(commands);
-    timestamps.begin(commands, 0);
-    bottomBuilds.recordBuilds(commands, scratch.address());
-    topBuild.record(commands, instances, scratch.address() + topScratch);
-    timestamps.end(commands, 0);
-  });
-  waitMs = submission.elapsedMs();
-  buildGpuMs = timestamps.elapsedMs(0);
+  device.oneTimeCommands().submit(
+      device,
+      [&](const ::vk::raii::CommandBuffer& commands) {
+        bottomBuilds.recordUpload(commands);
+        timestamps.begin(commands, 0);
+        bottomBuilds.recordBuilds(commands, scratch.address());
+        topBuild.record(commands, instances, scratch.address() + topScratch);
+        timestamps.end(commands, 0);
+      },
+      [buildGpuMs, &timestamps] { *buildGpuMs = timestamps.elapsedMs(0); });
+  submitMs = submission.elapsedMs();
   return {std::move(bottom), std::move(top)};
 }
 
@@ -80,36 +83,48 @@ std::pair<BottomLevels, AccelerationStructure> buildTogether(const VulkanDevice&
 std::unique_ptr<AccelerationScene> AccelerationScene::build(
     std::shared_ptr<const VulkanDevice> device, const Scene& scene) {
   // Where the wall time goes (the log line): packing, the geometry's buffers, the rest of the
-  // allocations and recording, and the one submission's round trip.
+  // allocations and recording, and the submission (waited for only on the compacted path).
   const Stopwatch wallClock;
+  // The previous build may still read the transient buffers that this one fills.
+  device->oneTimeCommands().retire(*device);
   device->deferredRelease().collect();
   const PackedGeometry geometry = packGeometry(scene);
   const double packMs = wallClock.elapsedMs();
   BottomLevelBuilds bottomBuilds(*device, geometry);
   const double prepareMs = wallClock.elapsedMs() - packMs;
-  double buildGpuMs = 0.0;
-  double waitMs = -1.0;  // the compacted path's several submissions are not split out
-  auto [bottom, top] = bottomBuilds.worthCompacting()
-                           ? buildCompacted(*device, scene, bottomBuilds, buildGpuMs)
-                           : buildTogether(*device, scene, bottomBuilds, buildGpuMs, waitMs);
-  std::unique_ptr<AccelerationScene> built(
-      new AccelerationScene(std::move(device), std::move(bottom.structures), std::move(top)));
-  built->buildGpuMs_ = buildGpuMs;
-  built->triangleCount_ = geometry.triangleCount;
+  auto buildGpuMs = std::make_shared<double>(-1.0);
+  double submitMs = -1.0;  // the compacted path's several submissions are not split out
+  const bool compacted = bottomBuilds.worthCompacting();
+  double compactedGpuMs = 0.0;
+  auto built = compacted ? buildCompacted(*device, scene, bottomBuilds, compactedGpuMs)
+                         : buildTogether(*device, scene, bottomBuilds, buildGpuMs, submitMs);
+  if (compacted) *buildGpuMs = compactedGpuMs;
+  std::unique_ptr<AccelerationScene> result(new AccelerationScene(
+      std::move(device), std::move(built.first.structures), std::move(built.second)));
+  result->buildGpuMs_ = std::move(buildGpuMs);
+  result->triangleCount_ = geometry.triangleCount;
   const double wallMs = wallClock.elapsedMs();
   spdlog::info(
-      "vulkan: scene '{}': {} triangles in {} bottom levels, {} instances: {:.1f} MB, GPU "
-      "{:.2f} ms, wall {:.2f} ms (pack {:.2f}, geometry buffers {:.2f}, {}){}",
-      scene.name, geometry.triangleCount, built->bottomLevels_.size(), scene.instances.size(),
-      static_cast<double>(built->gpuBytes()) / 1e6, built->buildGpuMs_, wallMs, packMs, prepareMs,
-      waitMs >= 0.0 ? fmt::format("build buffers {:.2f}, submit and wait {:.2f}",
-                                  wallMs - packMs - prepareMs - waitMs, waitMs)
-                    : fmt::format("compacted builds {:.2f}", wallMs - packMs - prepareMs),
+      "vulkan: scene '{}': {} triangles in {} bottom levels, {} instances: {:.1f} MB, wall "
+      "{:.2f} ms (pack {:.2f}, geometry buffers {:.2f}, {}){}",
+      scene.name, geometry.triangleCount, result->bottomLevels_.size(), scene.instances.size(),
+      static_cast<double>(result->gpuBytes()) / 1e6, wallMs, packMs, prepareMs,
+      compacted ? fmt::format("compacted builds {:.2f}, GPU {:.2f} ms",
+                              wallMs - packMs - prepareMs, *result->buildGpuMs_)
+                : fmt::format("build buffers {:.2f}, submit {:.2f}; not waited for",
+                              wallMs - packMs - prepareMs - submitMs, submitMs),
       geometry.droppedTriangles > 0
           ? fmt::format(" ({} triangles with indices out of range dropped)",
                         geometry.droppedTriangles)
           : std::string());
-  return built;
+  return result;
+}
+
+std::function<double()> AccelerationScene::buildGpuMsReader() const {
+  return [device = device_, gpuMs = buildGpuMs_] {
+    if (*gpuMs < 0.0) device->oneTimeCommands().retire(*device);
+    return std::max(*gpuMs, 0.0);
+  };
 }
 
 AccelerationScene::AccelerationScene(std::shared_ptr<const VulkanDevice> device,

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -24,7 +25,8 @@ class AccelerationScene final : public TraceScene {
   AccelerationScene& operator=(const AccelerationScene&) = delete;
 
   std::size_t gpuBytes() const override;
-  double buildGpuMs() const override { return buildGpuMs_; }
+  double buildGpuMs() const override { return buildGpuMsReader()(); }
+  std::function<double()> buildGpuMsReader() const override;
   std::size_t triangleCount() const override { return triangleCount_; }
 
   const VulkanDevice& device() const { return *device_; }
@@ -38,7 +40,8 @@ class AccelerationScene final : public TraceScene {
   std::shared_ptr<const VulkanDevice> device_;
   std::vector<AccelerationStructure> bottomLevels_;
   AccelerationStructure topLevel_;
-  double buildGpuMs_ = 0.0;
+  // The build's GPU ms, written when its submission is retired; < 0 until then.
+  std::shared_ptr<double> buildGpuMs_ = std::make_shared<double>(-1.0);
   std::size_t triangleCount_ = 0;
 };
 

@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -48,7 +49,12 @@ class TraceScene {
  public:
   virtual ~TraceScene() = default;
   virtual std::size_t gpuBytes() const = 0;  // device memory held
-  virtual double buildGpuMs() const = 0;     // BLAS + compaction + TLAS, Vulkan timestamps
+  // The build's GPU time: BLAS + compaction + TLAS, Vulkan timestamps. A small scene's build is
+  // submitted without waiting for it (the traces that use it follow on the same queue): this
+  // waits for it. Throws lgh::Error(Internal) when that wait fails.
+  virtual double buildGpuMs() const = 0;
+  // The same as a function that may outlive the scene: a frame reads it when it is taken.
+  virtual std::function<double()> buildGpuMsReader() const = 0;
   virtual std::size_t triangleCount() const = 0;
 };
 
