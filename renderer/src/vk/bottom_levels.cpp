@@ -66,7 +66,8 @@ class GeometryUpload {
  private:
   ::vk::DeviceSize indexOffset_;
   ::vk::DeviceSize bytes_;
-  // Transient buffers of the device (vk/transient_buffers.hpp): valid until the build's wait.
+  // Transient buffers of the device (vk/transient_buffers.hpp): kept until the next build, which
+  // retires this one before it uses them.
   const DeviceBuffer* staging_;
   const DeviceBuffer* buffer_;
 };
