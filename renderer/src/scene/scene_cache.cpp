@@ -126,7 +126,9 @@ SceneCache::Parsed SceneCache::parse(const RendererOptions& rendererOptions,
   return parsed;
 }
 
-std::size_t SceneCache::prefetchDepth() const { return parsers_ ? parsers_->maxProcesses() : 1; }
+std::size_t SceneCache::prefetchDepth() const {
+  return parsers_ ? 3 * parsers_->maxProcesses() : 1;
+}
 
 void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& options) {
   std::string key;

@@ -31,9 +31,13 @@ SceneWorker& SceneWorkerPool::acquire() {
     workers_.push_back(std::move(started));
     return *workers_.back();
   }
-  freed_.wait(lock, [this] { return !idle_.empty(); });
+  const std::uint64_t turn = nextTicket_++;
+  freed_.wait(lock, [&] { return !idle_.empty() && turn == serving_; });
+  ++serving_;
   SceneWorker* worker = idle_.back();
   idle_.pop_back();
+  lock.unlock();
+  freed_.notify_all();  // the next turn may find another idle worker
   return *worker;
 }
 
@@ -42,7 +46,7 @@ void SceneWorkerPool::release(SceneWorker& worker) {
     const std::lock_guard lock(mutex_);
     idle_.push_back(&worker);
   }
-  freed_.notify_one();
+  freed_.notify_all();  // the waiter whose turn it is
 }
 
 Scene SceneWorkerPool::load(const LoadJob& job) {
