@@ -57,7 +57,8 @@ class BlockedQueue {
   explicit BlockedQueue(const lgh::vk::VulkanDevice& device)
       : device_(device),
         event_(device.device(), ::vk::EventCreateInfo{}),
-        pool_(device.device(), ::vk::CommandPoolCreateInfo{.queueFamilyIndex = device.queueFamily()}),
+        pool_(device.device(),
+              ::vk::CommandPoolCreateInfo{.queueFamilyIndex = device.queueFamily()}),
         buffers_(device.device(),
                  ::vk::CommandBufferAllocateInfo{.commandPool = *pool_,
                                                  .level = ::vk::CommandBufferLevel::ePrimary,

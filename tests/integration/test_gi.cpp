@@ -8,8 +8,8 @@
 //    lights deposit their power;
 //  - the light paths' timing rows and decisions; the request's conflicts; no Vulkan: 503.
 // The golden image of the demo with one bounce is in test_render_golden.cpp.
-#include <algorithm>
 #include <gtest/gtest.h>
+#include <algorithm>
 
 #include <cmath>
 #include <cstdlib>

@@ -15,7 +15,6 @@
 
 namespace {
 
-
 class OneTimeCommandsTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -49,8 +48,7 @@ class OneTimeCommandsTest : public ::testing::Test {
 TEST_F(OneTimeCommandsTest, ASubmissionNotWaitedForIsRetiredByRetire) {
   lgh::vk::OneTimeCommands& commands = device->oneTimeCommands();
   double gpuMs = -1.0;
-  commands.submit(*device, timestampsOnly,
-                  [&] { gpuMs = commands.timestamps().elapsedMs(0); });
+  commands.submit(*device, timestampsOnly, [&] { gpuMs = commands.timestamps().elapsedMs(0); });
   EXPECT_EQ(gpuMs, -1.0) << "retired before anybody asked";
   commands.retire(*device);
   EXPECT_GE(gpuMs, 0.0);

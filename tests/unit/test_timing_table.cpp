@@ -124,9 +124,9 @@ TEST(TimingTable, AppendMergedJoinsTheSameWorkTimedByBothApis) {
   frame.appendMerged(vulkan);
   std::vector<std::string> names;
   for (const TimingRow& row : frame.rows) names.push_back(row.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"submit", "gbuffer", "gi vpls", "gi emit", "gi rays",
-                                             "lgh build", "lgh bounds", "gi transfer",
-                                             "shadow rays"}));
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"submit", "gbuffer", "gi vpls", "gi emit", "gi rays",
+                                      "lgh build", "lgh bounds", "gi transfer", "shadow rays"}));
   EXPECT_DOUBLE_EQ(frame.get("gi vpls"), 0.6);
   EXPECT_EQ(frame.rows[3].depth, 1);
   EXPECT_DOUBLE_EQ(frame.gpuTotal(), 2.0 + 0.6 + 0.3 + 1.5);

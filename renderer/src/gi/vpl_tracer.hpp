@@ -83,5 +83,4 @@ class VplTracer {
 // index as (group.y * groups.x + group.x) * 64 + local.x).
 void dispatchGi(std::uint32_t items);
 
-
 }  // namespace lgh

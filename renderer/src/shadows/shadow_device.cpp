@@ -70,7 +70,8 @@ std::optional<double> readBuildGpuMs(const std::function<double()>& reader) {
 
 ShadowDevice::SubmissionMark ShadowDevice::mark() const {
   if (!tracer_) return {};
-  return {.epoch = epoch_, .trace = tracer_->lastTrace(), .lightPaths = tracer_->lastLightPathTrace()};
+  return {
+      .epoch = epoch_, .trace = tracer_->lastTrace(), .lightPaths = tracer_->lastLightPathTrace()};
 }
 
 std::optional<double> ShadowDevice::traceGpuMs(const SubmissionMark& mark) {

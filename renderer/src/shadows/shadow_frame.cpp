@@ -175,7 +175,8 @@ GLuint ShadowFrame::filterLgh(int iterations, const CameraMatrices& camera,
 
 void ShadowFrame::collectTimings(FrameReport& report) {
   const bool traced = traced_ && device_ != nullptr && device_->tracer() != nullptr;
-  const ShadowDevice::SubmissionMark mark = traced ? device_->mark() : ShadowDevice::SubmissionMark{};
+  const ShadowDevice::SubmissionMark mark =
+      traced ? device_->mark() : ShadowDevice::SubmissionMark{};
   report.lateRows.push_back([device = device_, mark, traced, buildGpuMs = buildGpuMs_,
                              buildWallMs = buildWallMs_,
                              transferMs = transferMs_](TimingTable& table) {

@@ -109,8 +109,8 @@ std::unique_ptr<AccelerationScene> AccelerationScene::build(
       "{:.2f} ms (pack {:.2f}, geometry buffers {:.2f}, {}){}",
       scene.name, geometry.triangleCount, result->bottomLevels_.size(), scene.instances.size(),
       static_cast<double>(result->gpuBytes()) / 1e6, wallMs, packMs, prepareMs,
-      compacted ? fmt::format("compacted builds {:.2f}, GPU {:.2f} ms",
-                              wallMs - packMs - prepareMs, *result->buildGpuMs_)
+      compacted ? fmt::format("compacted builds {:.2f}, GPU {:.2f} ms", wallMs - packMs - prepareMs,
+                              *result->buildGpuMs_)
                 : fmt::format("build buffers {:.2f}, submit {:.2f}; not waited for",
                               wallMs - packMs - prepareMs - submitMs, submitMs),
       geometry.droppedTriangles > 0

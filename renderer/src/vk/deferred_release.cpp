@@ -70,9 +70,8 @@ void DeferredRelease::collectLocked(bool waitForOldest) noexcept {
     Pending& oldest = pending_.front();
     ::vk::Result status = ::vk::Result::eNotReady;
     try {
-      status = waitForOldest
-                   ? device_->waitForFences(*oldest.fence, VK_TRUE, kWaitNs)
-                   : oldest.fence.getStatus();
+      status = waitForOldest ? device_->waitForFences(*oldest.fence, VK_TRUE, kWaitNs)
+                             : oldest.fence.getStatus();
     } catch (const ::vk::SystemError& error) {
       // The device is lost: nothing runs on it any more.
       spdlog::warn("vulkan: a deferred release's fence failed ({}): releasing", error.what());

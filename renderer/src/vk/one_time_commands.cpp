@@ -28,8 +28,7 @@ OneTimeCommands::~OneTimeCommands() {
   try {
     waitForFence(*device_, *fence_, "the acceleration-structure build");
   } catch (const std::exception& error) {
-    spdlog::warn("vulkan: a pending acceleration-structure build did not finish: {}",
-                 error.what());
+    spdlog::warn("vulkan: a pending acceleration-structure build did not finish: {}", error.what());
   }
 }
 

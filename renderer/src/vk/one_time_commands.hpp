@@ -51,7 +51,7 @@ class OneTimeCommands {
  private:
   void retireLocked(const VulkanDevice& device);
 
-  std::mutex mutex_;         // one submission at a time: the buffer and the fence are reused
+  std::mutex mutex_;  // one submission at a time: the buffer and the fence are reused
   const VulkanDevice* device_;
   bool pending_ = false;     // submitted, not yet waited for
   bool unfinished_ = false;  // a wait failed: the buffer and the fence may still be in use

@@ -24,9 +24,9 @@ void TimestampQueries::end(const ::vk::raii::CommandBuffer& commands, std::uint3
 
 double TimestampQueries::elapsedMs(std::uint32_t pair) const {
   if (!pool_) return 0.0;
-  const auto [result, ticks] = pool_->getResults<std::uint64_t>(
-      2 * pair, 2, 2 * sizeof(std::uint64_t), sizeof(std::uint64_t),
-      ::vk::QueryResultFlagBits::e64);
+  const auto [result, ticks] =
+      pool_->getResults<std::uint64_t>(2 * pair, 2, 2 * sizeof(std::uint64_t),
+                                       sizeof(std::uint64_t), ::vk::QueryResultFlagBits::e64);
   if (result != ::vk::Result::eSuccess || ticks[1] < ticks[0]) return 0.0;
   return static_cast<double>(ticks[1] - ticks[0]) * periodNs_ * 1e-6;
 }

@@ -41,7 +41,7 @@ class SceneWorkerPool {
   std::condition_variable freed_;
   std::vector<std::unique_ptr<SceneWorker>> workers_;
   std::vector<SceneWorker*> idle_;
-  std::size_t starting_ = 0;  // workers being started outside the lock
+  std::size_t starting_ = 0;      // workers being started outside the lock
   std::uint64_t nextTicket_ = 0;  // loads that waited for a worker: the next one's turn number
   std::uint64_t serving_ = 0;     // the turn of the waiting load that gets the next idle worker
 };
