@@ -51,8 +51,10 @@ struct RendererOptions {
   std::size_t maxTextureBytes = 4ULL << 30;    // all textures of one scene, decoded to RGBA8
   std::size_t sceneCacheBytes = 512ULL << 20;  // GPU memory budget of the scene cache
   // Frames whose GPU work and read-back may be under way at once (Renderer::submit): the GPU
-  // works on frame N while the CPU issues frame N + 1.
-  int framesInFlight = 2;
+  // works on frame N while the CPU issues frames N + 1 and on. A shadowed frame's hand-overs
+  // between GL and Vulkan make its latency several times its GPU time (docs/BENCHMARKS.md,
+  // "GPU targets, fourth round"): with 2, a render thread issuing small frames waited for them.
+  int framesInFlight = 4;
   // Untrusted assets (paths, uploads, inline GLBs) parsed in a worker process
   // (lgh/scene_worker.hpp) rather than in this one: a parser crash or runaway then fails one load,
   // not the process. Empty executable: in this process.
