@@ -4,39 +4,17 @@
 #include <gtest/gtest.h>
 
 #include <memory>
-#include <string>
 
-#include "context/gl_context.hpp"
-#include "gl/gl_api.hpp"
-#include "lgh/error.hpp"
-#include "test_support.hpp"
 #include "vk/deferred_release.hpp"
 #include "vk/vulkan_device.hpp"
+#include "vulkan_device_test.hpp"
 
 namespace {
 
 using lgh::vk::DeferredRelease;
 
-class DeferredReleaseTest : public ::testing::Test {
+class DeferredReleaseTest : public lgh::test::VulkanDeviceTest {
  protected:
-  static void SetUpTestSuite() {
-    context = lgh::GlContext::create(lgh::test::rendererOptions());
-    lgh::vk::DeviceUuid uuid{};
-    glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, uuid.data());
-    try {
-      device = lgh::vk::VulkanDevice::create(uuid);
-    } catch (const lgh::Error& error) {
-      skipReason = error.what();
-    }
-  }
-  static void TearDownTestSuite() {
-    device.reset();
-    context.reset();
-  }
-  void SetUp() override {
-    if (device == nullptr) GTEST_SKIP() << "no Vulkan device: " << skipReason;
-  }
-
   // Something to hold whose destruction the test sees.
   static std::shared_ptr<void> tracked(bool& destroyed) {
     destroyed = false;
@@ -45,10 +23,6 @@ class DeferredReleaseTest : public ::testing::Test {
               delete value;
             }};
   }
-
-  static inline std::unique_ptr<lgh::GlContext> context;
-  static inline std::shared_ptr<lgh::vk::VulkanDevice> device;
-  static inline std::string skipReason;
 };
 
 // Work on the queue that waits for the host to set an event: in flight until the test says so.

@@ -3,46 +3,18 @@
 // retire(); submitAndWait retires its own.
 #include <gtest/gtest.h>
 
-#include <memory>
-#include <string>
-
-#include "context/gl_context.hpp"
-#include "gl/gl_api.hpp"
-#include "lgh/error.hpp"
-#include "test_support.hpp"
 #include "vk/one_time_commands.hpp"
 #include "vk/vulkan_device.hpp"
+#include "vulkan_device_test.hpp"
 
 namespace {
 
-class OneTimeCommandsTest : public ::testing::Test {
+class OneTimeCommandsTest : public lgh::test::VulkanDeviceTest {
  protected:
-  static void SetUpTestSuite() {
-    context = lgh::GlContext::create(lgh::test::rendererOptions());
-    lgh::vk::DeviceUuid uuid{};
-    glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, uuid.data());
-    try {
-      device = lgh::vk::VulkanDevice::create(uuid);
-    } catch (const lgh::Error& error) {
-      skipReason = error.what();
-    }
-  }
-  static void TearDownTestSuite() {
-    device.reset();
-    context.reset();
-  }
-  void SetUp() override {
-    if (device == nullptr) GTEST_SKIP() << "no Vulkan device: " << skipReason;
-  }
-
   static void timestampsOnly(const ::vk::raii::CommandBuffer& commands) {
     device->oneTimeCommands().timestamps().begin(commands, 0);
     device->oneTimeCommands().timestamps().end(commands, 0);
   }
-
-  static inline std::unique_ptr<lgh::GlContext> context;
-  static inline std::shared_ptr<lgh::vk::VulkanDevice> device;
-  static inline std::string skipReason;
 };
 
 TEST_F(OneTimeCommandsTest, ASubmissionNotWaitedForIsRetiredByRetire) {

@@ -4,40 +4,16 @@
 // render thread draw the next frame while this one's rays are traced.
 #include <gtest/gtest.h>
 
-#include <memory>
-#include <string>
-
-#include "context/gl_context.hpp"
-#include "gl/gl_api.hpp"
-#include "lgh/error.hpp"
-#include "test_support.hpp"
 #include "vk/trace_submissions.hpp"
 #include "vk/vulkan_device.hpp"
+#include "vulkan_device_test.hpp"
 
 namespace {
 
 using lgh::vk::TraceSubmissions;
 
-class TraceSubmissionsTest : public ::testing::Test {
+class TraceSubmissionsTest : public lgh::test::VulkanDeviceTest {
  protected:
-  static void SetUpTestSuite() {
-    context = lgh::GlContext::create(lgh::test::rendererOptions());
-    lgh::vk::DeviceUuid uuid{};
-    glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, uuid.data());
-    try {
-      device = lgh::vk::VulkanDevice::create(uuid);
-    } catch (const lgh::Error& error) {
-      skipReason = error.what();
-    }
-  }
-  static void TearDownTestSuite() {
-    device.reset();
-    context.reset();
-  }
-  void SetUp() override {
-    if (device == nullptr) GTEST_SKIP() << "no Vulkan device: " << skipReason;
-  }
-
   // Records a submission that does nothing but its timestamps.
   static std::uint64_t submit(TraceSubmissions& submissions) {
     const std::uint32_t slot = submissions.acquire();
@@ -49,10 +25,6 @@ class TraceSubmissionsTest : public ::testing::Test {
     submissions.submit(slot, {}, {}, {});
     return submissions.lastSubmission();
   }
-
-  static inline std::unique_ptr<lgh::GlContext> context;
-  static inline std::shared_ptr<lgh::vk::VulkanDevice> device;
-  static inline std::string skipReason;
 };
 
 TEST_F(TraceSubmissionsTest, SubmissionsAreNumberedFromOne) {

@@ -3,15 +3,9 @@
 // grown when it is not, and not kept far larger than needed once past the kept size.
 #include <gtest/gtest.h>
 
-#include <memory>
-#include <string>
-
-#include "context/gl_context.hpp"
-#include "gl/gl_api.hpp"
-#include "lgh/error.hpp"
-#include "test_support.hpp"
 #include "vk/transient_buffers.hpp"
 #include "vk/vulkan_device.hpp"
+#include "vulkan_device_test.hpp"
 
 namespace {
 
@@ -19,26 +13,8 @@ using lgh::vk::BufferSpec;
 using lgh::vk::MemoryKind;
 using lgh::vk::TransientBuffers;
 
-class TransientBuffersTest : public ::testing::Test {
+class TransientBuffersTest : public lgh::test::VulkanDeviceTest {
  protected:
-  static void SetUpTestSuite() {
-    context = lgh::GlContext::create(lgh::test::rendererOptions());
-    lgh::vk::DeviceUuid uuid{};
-    glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, uuid.data());
-    try {
-      device = lgh::vk::VulkanDevice::create(uuid);
-    } catch (const lgh::Error& error) {
-      skipReason = error.what();
-    }
-  }
-  static void TearDownTestSuite() {
-    device.reset();
-    context.reset();
-  }
-  void SetUp() override {
-    if (device == nullptr) GTEST_SKIP() << "no Vulkan device: " << skipReason;
-  }
-
   static BufferSpec staging(::vk::DeviceSize size) {
     return {.size = size,
             .usage = ::vk::BufferUsageFlagBits::eTransferSrc,
@@ -51,10 +27,6 @@ class TransientBuffersTest : public ::testing::Test {
             .deviceAddress = true,
             .addressAlignment = 256};
   }
-
-  static inline std::unique_ptr<lgh::GlContext> context;
-  static inline std::shared_ptr<lgh::vk::VulkanDevice> device;
-  static inline std::string skipReason;
 };
 
 TEST_F(TransientBuffersTest, OneBufferPerKindHandedOutWhileLargeEnough) {
