@@ -465,7 +465,11 @@ bool RenderWorker::completeFrame(bool wait) {
   FrameInFlight frame = std::move(submitted_.front());
   submitted_.pop_front();
   frame.finished = Clock::now();
-  publishRendererState();
+  // The renderer's state for status(): after the last frame in flight, and at most every
+  // kPublishInterval in between (its GL queries cost the render thread per thumbnail).
+  if (submitted_.empty() || frame.finished - lastPublished_ >= kPublishInterval) {
+    publishRendererState();
+  }
   encoders_.submit([this, frame = std::move(frame), result = std::move(*result)]() mutable {
     encode(frame, result);
   });
@@ -560,6 +564,7 @@ void RenderWorker::settleFramesInFlight() {
 }
 
 void RenderWorker::publishRendererState() {
+  lastPublished_ = Clock::now();
   const lgh::Renderer::CacheStats stats = renderer_->sceneCacheStats();
   lgh::ShadowInfo shadows = renderer_->shadowInfo();
   lgh::ResourceStats resources = renderer_->resourceStats();

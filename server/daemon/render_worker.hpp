@@ -137,6 +137,7 @@ class RenderWorker {
   void frameDone(const FrameInFlight& frame, double seconds, std::optional<bool> cacheHit);
   void publishRendererState();
   void releaseRenderer();
+  static constexpr auto kPublishInterval = std::chrono::milliseconds(100);
 
   Options options_;
   Metrics& metrics_;
@@ -144,6 +145,7 @@ class RenderWorker {
   Hooks hooks_;
   std::unique_ptr<lgh::Renderer> renderer_;  // made, used and destroyed on the render thread
   std::vector<const RenderTicket*> hinted_;  // the last look-ahead window (render thread)
+  Clock::time_point lastPublished_;          // of publishRendererState (render thread)
 
   mutable std::mutex mutex_;
   std::condition_variable workCondition_;

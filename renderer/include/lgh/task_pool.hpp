@@ -39,6 +39,7 @@ class TaskPool {
 
  private:
   void work();
+  void stop();  // runs what is queued, joins the workers
 
   mutable std::mutex mutex_;
   std::condition_variable workAvailable_;

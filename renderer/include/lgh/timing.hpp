@@ -14,6 +14,9 @@ struct TimingRow {
   enum class Clock { Gpu, Cpu } clock = Clock::Gpu;
   double milliseconds = 0.0;
   int depth = 0;  // 0: a pass of the frame; 1: a step inside the depth-0 pass before it; ...
+  // A GPU pass's render-thread time spent issuing it (its GL and Vulkan calls, from its first
+  // timer query to its last); < 0 where not measured (CPU rows, rows timed by Vulkan alone).
+  double cpuMilliseconds = -1.0;
 };
 
 struct TimingTable {

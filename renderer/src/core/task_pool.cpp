@@ -14,10 +14,17 @@ int TaskPool::hardwareThreads() {
 TaskPool::TaskPool(int threads) {
   const int count = threads < 1 ? hardwareThreads() : threads;
   workers_.reserve(static_cast<std::size_t>(count));
-  for (int i = 0; i < count; ++i) workers_.emplace_back([this] { work(); });
+  try {
+    for (int i = 0; i < count; ++i) workers_.emplace_back([this] { work(); });
+  } catch (...) {  // no thread for the rest: the ones made must be joined before this throws
+    stop();
+    throw;
+  }
 }
 
-TaskPool::~TaskPool() {
+TaskPool::~TaskPool() { stop(); }
+
+void TaskPool::stop() {
   {
     std::lock_guard lock(mutex_);
     stopping_ = true;

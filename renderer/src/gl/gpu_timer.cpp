@@ -8,7 +8,7 @@ GLuint GpuTimer::nextQuery() {
 }
 
 int GpuTimer::begin(std::string pass) {
-  Pass entry{std::move(pass), nextQuery(), 0, open_++};
+  Pass entry{std::move(pass), nextQuery(), 0, open_++, std::chrono::steady_clock::now()};
   glQueryCounter(entry.begin, GL_TIMESTAMP);
   passes_.push_back(std::move(entry));
   return static_cast<int>(passes_.size()) - 1;
@@ -18,6 +18,9 @@ void GpuTimer::end(int token) {
   Pass& pass = passes_.at(static_cast<size_t>(token));
   pass.end = nextQuery();
   glQueryCounter(pass.end, GL_TIMESTAMP);
+  pass.cpuMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pass.issued)
+          .count();
   --open_;
 }
 
@@ -30,6 +33,7 @@ void GpuTimer::collect(TimingTable& table) {
     glGetQueryObjectui64v(pass.end, GL_QUERY_RESULT, &end);
     double ms = end >= begin ? static_cast<double>(end - begin) * 1e-6 : 0.0;
     table.add(pass.name, TimingRow::Clock::Gpu, ms, pass.depth);
+    table.rows.back().cpuMilliseconds = pass.cpuMs;
   }
   discard();
 }

@@ -1,7 +1,9 @@
 // Per-pass GPU timing with GL_TIMESTAMP queries (glQueryCounter), so passes may nest: only one
-// GL_TIME_ELAPSED query can be active at a time. Results are read after the frame, once.
+// GL_TIME_ELAPSED query can be active at a time. Results are read after the frame, once. Each
+// pass also gets the render thread's time between its two queries: what issuing it cost the CPU.
 #pragma once
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -27,6 +29,8 @@ class GpuTimer {
     GLuint begin = 0;
     GLuint end = 0;
     int depth = 0;  // passes open when it began
+    std::chrono::steady_clock::time_point issued;
+    double cpuMs = 0.0;
   };
   std::vector<Query> pool_;
   std::size_t used_ = 0;

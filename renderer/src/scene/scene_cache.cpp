@@ -1,5 +1,6 @@
 #include "scene/scene_cache.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -81,19 +82,35 @@ std::string SceneCache::sourceKey(const SceneSource& source) const {
       }
       return key;
     }
-    case SceneSource::Kind::AssetPath: {
-      auto path = resolveAssetPath(options_.assetRoot, source.assetPath, "/scene/asset");
-      std::error_code error;
-      auto size = std::filesystem::file_size(path, error);
-      auto mtime = std::filesystem::last_write_time(path, error).time_since_epoch().count();
-      // A .gltf's side files may change without the .gltf changing: key by the folder's newest
-      // mtime too, cheaply, by the .gltf's own folder.
-      auto folderTime =
-          std::filesystem::last_write_time(path.parent_path(), error).time_since_epoch().count();
-      return fmt::format("file:{}:{}:{}:{}", path.string(), size, mtime, folderTime);
-    }
+    case SceneSource::Kind::AssetPath:
+      return assetKey(source.assetPath);
   }
   return {};
+}
+
+std::string SceneCache::assetKey(const std::string& assetPath) const {
+  const auto now = std::chrono::steady_clock::now();
+  if (const auto known = assetKeys_.find(assetPath);
+      known != assetKeys_.end() && now - known->second.checked < kAssetKeyLifetime) {
+    return known->second.key;
+  }
+  auto path = resolveAssetPath(options_.assetRoot, assetPath, "/scene/asset");
+  std::error_code error;
+  auto size = std::filesystem::file_size(path, error);
+  auto mtime = std::filesystem::last_write_time(path, error).time_since_epoch().count();
+  // A .gltf's side files may change without the .gltf changing: key by the folder's newest
+  // mtime too, cheaply, by the .gltf's own folder.
+  auto folderTime =
+      std::filesystem::last_write_time(path.parent_path(), error).time_since_epoch().count();
+  std::string key = fmt::format("file:{}:{}:{}:{}", path.string(), size, mtime, folderTime);
+  if (assetKeys_.size() >= kMaxAssetKeys) {
+    std::erase_if(assetKeys_, [&](const auto& entry) {
+      return now - entry.second.checked >= kAssetKeyLifetime;
+    });
+    if (assetKeys_.size() >= kMaxAssetKeys) assetKeys_.clear();
+  }
+  assetKeys_[assetPath] = {key, now};
+  return key;
 }
 
 namespace {
@@ -127,7 +144,9 @@ SceneCache::Parsed SceneCache::parse(const RendererOptions& rendererOptions,
 }
 
 std::size_t SceneCache::prefetchDepth() const {
-  return parsers_ ? 3 * parsers_->maxProcesses() : 1;
+  constexpr std::size_t kPerProcess = 8;
+  constexpr std::size_t kMaxDepth = 64;
+  return parsers_ ? std::min(kPerProcess * parsers_->maxProcesses(), kMaxDepth) : 1;
 }
 
 void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& options) {
@@ -150,14 +169,19 @@ void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& opt
   }
   if (prefetches_.size() >= maxPrefetches()) return;
   try {
-    prefetches_.emplace(
-        key, std::async(std::launch::async,
-                        [rendererOptions = options_, parsers = parsers_.get(), source, options] {
-                          return parse(rendererOptions, parsers, source, options);
-                        }));
-  } catch (const std::system_error& error) {
+    if (!prefetchThreads_) {
+      prefetchThreads_ = std::make_unique<TaskPool>(static_cast<int>(maxPrefetches()));
+    }
+    auto parsing = std::make_shared<std::packaged_task<Parsed()>>(
+        [rendererOptions = options_, parsers = parsers_.get(), source, options] {
+          return parse(rendererOptions, parsers, source, options);
+        });
+    prefetches_.emplace(key, parsing->get_future());
+    prefetchThreads_->submit([parsing] { (*parsing)(); });  // its exceptions go to the future
+  } catch (const std::exception& error) {  // no thread (std::system_error), no memory
     spdlog::warn("scene cache: no thread for a prefetch ({}); the scene is parsed when drawn",
                  error.what());
+    prefetches_.erase(key);
   }
 }
 

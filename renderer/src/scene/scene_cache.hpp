@@ -4,15 +4,18 @@
 // it alone exceeds the budget.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <future>
 #include <list>
 #include <map>
 #include <memory>
 #include <string>
+#include <unordered_map>
 
 #include "lgh/renderer_options.hpp"
 #include "lgh/scene_cache_stats.hpp"
+#include "lgh/task_pool.hpp"
 #include "scene/gltf/gltf_loader.hpp"
 #include "scene/gpu_scene.hpp"
 #include "scene/scene.hpp"
@@ -73,16 +76,16 @@ class SceneCache {
   Lookup get(const SceneSource& source, const SceneLoadOptions& options = {});
   SceneCacheStats stats() const;
 
-  // Starts parsing `source` on a thread of its own unless it is cached or already being parsed;
+  // Starts parsing `source` on a prefetch thread unless it is cached or already being parsed;
   // the get() that asks for it then waits for that parse instead of parsing (its errors come
   // from that get()). The upload stays for get(), on the GL thread. At most maxPrefetches()
   // parses run at once; a hint beyond that is dropped.
   void prefetch(const SceneSource& source, const SceneLoadOptions& options = {});
-  // Scenes hinted ahead: three per parser process (1 without them), so that the look-ahead
-  // covers a slow asset's parse (a draco or textured asset took 20-56 ms to parse on the H200
-  // machine while small ones drew in 1-3 ms each: with one hint per process the render thread
-  // waited for them). Beyond the processes, parses wait in hint order for a free one.
-  // Prefetches run at most one more than the depth.
+  // Scenes hinted ahead: eight per parser process (1 without them), at most 64, so that the
+  // look-ahead covers a slow asset's parse (a draco or textured asset took 20-56 ms to parse on
+  // the H200 machine while small ones drew in 1-2.5 ms each: with three hints per process the
+  // render thread still waited 0.7 ms per thumbnail for them). Beyond the processes, parses wait
+  // in hint order for a free one. Prefetches run at most one more than the depth.
   std::size_t prefetchDepth() const;
   std::size_t maxPrefetches() const { return prefetchDepth() + 1; }
 
@@ -98,11 +101,27 @@ class SceneCache {
   static Parsed parse(const RendererOptions& rendererOptions, worker::SceneWorkerPool* parsers,
                       const SceneSource& source, const SceneLoadOptions& options);
   std::string sourceKey(const SceneSource& source) const;
+  // An asset path's key: resolved inside the asset root and stat'ed (some twenty system calls),
+  // then reused for kAssetKeyLifetime: the hint and the draw of one thumbnail, and the repeats of
+  // an asset in a batch, ask for it within milliseconds. A file changed on disk is seen by the
+  // requests drawn from kAssetKeyLifetime after the change on.
+  std::string assetKey(const std::string& assetPath) const;
+  static constexpr std::chrono::milliseconds kAssetKeyLifetime{500};
+  static constexpr std::size_t kMaxAssetKeys = 4096;
+  struct AssetKey {
+    std::string key;
+    std::chrono::steady_clock::time_point checked;
+  };
+  mutable std::unordered_map<std::string, AssetKey> assetKeys_;
   void evictOverBudget();
   RendererOptions options_;
   std::unique_ptr<worker::SceneWorkerPool> parsers_;
   // By key. Declared after parsers_ so that its parses (which may use them) end first.
   std::map<std::string, std::future<Parsed>> prefetches_;
+  // The threads that wait for the prefetched parses, made on the first hint and kept: a thread
+  // made per hint cost the render thread a clone() per new scene. Declared after parsers_ and
+  // prefetches_: joined before they go.
+  std::unique_ptr<TaskPool> prefetchThreads_;
   float maxAnisotropy_ = 1.0F;
   struct Slot {
     std::string key;

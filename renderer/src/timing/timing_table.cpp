@@ -30,6 +30,7 @@ void TimingTable::appendMerged(const TimingTable& later) {
     });
     if (row->depth == 0 && row->clock == TimingRow::Clock::Gpu && same != rows.end()) {
       same->milliseconds = std::max(same->milliseconds, row->milliseconds);
+      same->cpuMilliseconds = std::max(same->cpuMilliseconds, row->cpuMilliseconds);
       auto after = std::next(same);
       while (after != rows.end() && after->depth > 0) ++after;
       rows.insert(after, std::next(row), subtreeEnd);
@@ -87,6 +88,7 @@ nlohmann::json TimingTable::toJson() const {
     nlohmann::json entry = {
         {"pass", row.name}, {"clock", clockName(row.clock)}, {"ms", row.milliseconds}};
     if (row.depth > 0) entry["depth"] = row.depth;
+    if (row.cpuMilliseconds >= 0.0) entry["cpu_ms"] = row.cpuMilliseconds;
     array.push_back(std::move(entry));
   }
   return array;
