@@ -65,10 +65,10 @@ class BlockedQueue {
 };
 
 TEST_F(DeferredReleaseTest, HeldWhileEarlierWorkRunsAndDestroyedOnceItIsDone) {
-  DeferredRelease release(device->device());
+  DeferredRelease release(*device);
   bool destroyed = false;
   BlockedQueue blocked(*device);
-  release.release(device->queue(), tracked(destroyed));
+  release.release(tracked(destroyed));
   release.collect();
   EXPECT_FALSE(destroyed) << "destroyed while work submitted before its release still ran";
   EXPECT_EQ(release.pending(), 1U);
@@ -79,12 +79,12 @@ TEST_F(DeferredReleaseTest, HeldWhileEarlierWorkRunsAndDestroyedOnceItIsDone) {
 }
 
 TEST_F(DeferredReleaseTest, ALaterReleaseDestroysWhatIsDone) {
-  DeferredRelease release(device->device());
+  DeferredRelease release(*device);
   bool first = false;
   bool second = false;
-  release.release(device->queue(), tracked(first));
+  release.release(tracked(first));
   device->queue().waitIdle();
-  release.release(device->queue(), tracked(second));
+  release.release(tracked(second));
   EXPECT_TRUE(first);
   device->queue().waitIdle();
   release.collect();
@@ -94,9 +94,9 @@ TEST_F(DeferredReleaseTest, ALaterReleaseDestroysWhatIsDone) {
 TEST_F(DeferredReleaseTest, TheOwnersDestructionWaitsAndDestroysTheRest) {
   bool destroyed = false;
   {
-    auto release = std::make_unique<DeferredRelease>(device->device());
+    auto release = std::make_unique<DeferredRelease>(*device);
     BlockedQueue blocked(*device);
-    release->release(device->queue(), tracked(destroyed));
+    release->release(tracked(destroyed));
     EXPECT_FALSE(destroyed);
     blocked.unblock();  // else the destructor's wait for the device would never end
     release.reset();
@@ -105,9 +105,9 @@ TEST_F(DeferredReleaseTest, TheOwnersDestructionWaitsAndDestroysTheRest) {
 }
 
 TEST_F(DeferredReleaseTest, NeverHoldsMoreThanItsLimitWhileTheQueueMovesOn) {
-  DeferredRelease release(device->device());
+  DeferredRelease release(*device);
   for (std::size_t i = 0; i < 3 * DeferredRelease::kMaxPending; ++i) {
-    release.release(device->queue(), std::make_shared<int>(static_cast<int>(i)));
+    release.release(std::make_shared<int>(static_cast<int>(i)));
     EXPECT_LE(release.pending(), DeferredRelease::kMaxPending + 1);
   }
   device->queue().waitIdle();

@@ -4,6 +4,7 @@
 //  - both tracing paths give the same image; shadows only ever darken;
 //  - the LGH's shadow samples are traced and filtered; the shadowed brute-force reference;
 //  - soft shadows from a light with a radius have penumbrae;
+//  - acceleration structures built ahead on a prefetch thread trace as those built when drawn;
 //  - without a Vulkan driver: auto renders unshadowed with a warning, "on" fails with 503.
 // Golden images of the shadowed demo are in test_render_golden.cpp.
 #include <gtest/gtest.h>
@@ -192,6 +193,32 @@ TEST_F(Shadows, LightsBeyondTheRayBudgetAreNamedInAWarning) {
   ASSERT_EQ(result.warnings.size(), 1U);
   EXPECT_NE(result.warnings[0].find("1 of 5 lights cast no shadows"), std::string::npos)
       << result.warnings[0];
+}
+
+// The scene cache's look-ahead builds a scene's acceleration structures on its prefetch thread
+// (SceneCache::prefetch with ShadowDevice::prefetchBuilder), while the render thread draws: the
+// frame then builds nothing, and its shadows are those of a build on the render thread.
+TEST_F(Shadows, StructuresBuiltAheadTraceAsThoseBuiltWhenDrawn) {
+  const lgh::RenderRequest occluder = lgh::parseRenderRequest(occluderRequest("on"));
+  const auto firstShadowedFrame = [] {  // the tracer is made by the first frame that traces
+    return lgh::parseRenderRequest(
+        R"({"settings": {"shadows": "on"}, "output": {"width": 32, "height": 24}})");
+  };
+  lgh::Renderer drawn(options());
+  drawn.render(firstShadowedFrame());
+  const lgh::RenderResult builtWhenDrawn = drawn.render(occluder);
+  lgh::Renderer ahead(options());
+  ahead.render(firstShadowedFrame());
+  ahead.prefetch(occluder);
+  const lgh::RenderResult builtAhead = ahead.render(occluder);
+
+  EXPECT_GE(builtWhenDrawn.timings.get("shadow as build wall"), 0.0);
+  EXPECT_LT(builtAhead.timings.get("shadow as build wall"), 0.0) << "built again when drawn";
+  EXPECT_EQ(builtAhead.decisions.at("scene_parse"), "prefetched");
+  EXPECT_EQ(builtAhead.decisions.at("shadows"), builtWhenDrawn.decisions.at("shadows"));
+  const lgh::FloatImage a = builtWhenDrawn.pixels.toFloatImage();
+  const lgh::FloatImage b = builtAhead.pixels.toFloatImage();
+  EXPECT_EQ(a.rgba, b.rgba);
 }
 
 // Each test runs in a process of its own (ctest): the Vulkan loader here finds no driver.

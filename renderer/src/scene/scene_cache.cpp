@@ -134,6 +134,20 @@ Scene loadScene(const RendererOptions& rendererOptions, worker::SceneWorkerPool*
 
 }  // namespace
 
+TraceSceneSlot SceneCache::buildTraceAhead(const TraceBuilder& build, const Scene& scene) {
+  // A large scene's structures are built when it is drawn: the look-ahead holds up to 64 scenes,
+  // and their structures would hold GPU memory that the cache's budget does not see.
+  if (scene.triangleCount() > kMaxTrianglesBuiltAhead) return {};
+  try {
+    return build(scene);
+  } catch (const std::exception& error) {
+    // The frame that draws the scene builds it again, and reports what fails then.
+    spdlog::warn("scene cache: the acceleration structures of '{}' could not be built ahead: {}",
+                 scene.name, error.what());
+    return {};
+  }
+}
+
 SceneCache::Parsed SceneCache::parse(const RendererOptions& rendererOptions,
                                      worker::SceneWorkerPool* parsers, const SceneSource& source,
                                      const SceneLoadOptions& options) {
@@ -149,7 +163,8 @@ std::size_t SceneCache::prefetchDepth() const {
   return parsers_ ? std::min(kPerProcess * parsers_->maxProcesses(), kMaxDepth) : 1;
 }
 
-void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& options) {
+void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& options,
+                          TraceBuilder buildTrace) {
   std::string key;
   try {
     key = keyFor(source, options);
@@ -173,8 +188,11 @@ void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& opt
       prefetchThreads_ = std::make_unique<TaskPool>(static_cast<int>(maxPrefetches()));
     }
     auto parsing = std::make_shared<std::packaged_task<Parsed()>>(
-        [rendererOptions = options_, parsers = parsers_.get(), source, options] {
-          return parse(rendererOptions, parsers, source, options);
+        [rendererOptions = options_, parsers = parsers_.get(), source, options,
+         buildTrace = std::move(buildTrace)] {
+          Parsed parsed = parse(rendererOptions, parsers, source, options);
+          if (buildTrace) parsed.trace = buildTraceAhead(buildTrace, parsed.scene);
+          return parsed;
         });
     prefetches_.emplace(key, parsing->get_future());
     prefetchThreads_->submit([parsing] { (*parsing)(); });  // its exceptions go to the future
@@ -219,6 +237,7 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
     }
   }
   entry->scene = std::move(parsed.scene);
+  entry->trace = std::move(parsed.trace);
   lookup.loadMs = parsed.loadMs;
   const Stopwatch uploadTimer;
   entry->gpu = std::make_unique<GpuScene>(

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <future>
 #include <list>
 #include <map>
@@ -76,11 +77,16 @@ class SceneCache {
   Lookup get(const SceneSource& source, const SceneLoadOptions& options = {});
   SceneCacheStats stats() const;
 
+  // Builds a parsed scene's acceleration structures on the prefetch thread (ShadowDevice::
+  // prefetchBuilder); an empty slot leaves the build to the frame that draws the scene.
+  using TraceBuilder = std::function<TraceSceneSlot(const Scene&)>;
   // Starts parsing `source` on a prefetch thread unless it is cached or already being parsed;
   // the get() that asks for it then waits for that parse instead of parsing (its errors come
-  // from that get()). The upload stays for get(), on the GL thread. At most maxPrefetches()
-  // parses run at once; a hint beyond that is dropped.
-  void prefetch(const SceneSource& source, const SceneLoadOptions& options = {});
+  // from that get()). With `buildTrace`, the same thread then builds the scene's acceleration
+  // structures. The upload stays for get(), on the GL thread. At most maxPrefetches() parses
+  // run at once; a hint beyond that is dropped.
+  void prefetch(const SceneSource& source, const SceneLoadOptions& options = {},
+                TraceBuilder buildTrace = {});
   // Scenes hinted ahead: eight per parser process (1 without them), at most 64, so that the
   // look-ahead covers a slow asset's parse (a draco or textured asset took 20-56 ms to parse on
   // the H200 machine while small ones drew in 1-2.5 ms each: with three hints per process the
@@ -96,7 +102,10 @@ class SceneCache {
   struct Parsed {
     Scene scene;
     double loadMs = 0.0;
+    TraceSceneSlot trace;  // built ahead, or empty
   };
+  static constexpr std::size_t kMaxTrianglesBuiltAhead = 250'000;
+  static TraceSceneSlot buildTraceAhead(const TraceBuilder& build, const Scene& scene);
   // In the scene parser worker when there is one (untrusted bytes never parsed here).
   static Parsed parse(const RendererOptions& rendererOptions, worker::SceneWorkerPool* parsers,
                       const SceneSource& source, const SceneLoadOptions& options);

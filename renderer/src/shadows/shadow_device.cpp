@@ -147,6 +147,13 @@ const vk::TraceScene& ShadowDevice::traceScene(const CachedScene& scene,
   return *slot.scene;
 }
 
+SceneCache::TraceBuilder ShadowDevice::prefetchBuilder() const {
+  if (!tracer_) return {};
+  return [build = tracer_->sceneBuilder(), epoch = epoch_](const Scene& scene) {
+    return TraceSceneSlot{build(scene), epoch};
+  };
+}
+
 void ShadowDevice::reset(const std::string& why) {
   spdlog::error("shadows: the Vulkan tracer is reset after a failure: {}", why);
   tracer_.reset();

@@ -33,6 +33,10 @@ class ShadowDevice {
   // Changes whenever a new tracer is created: acceleration structures of an older epoch belong
   // to a device that is gone and must be built again.
   std::uint64_t epoch() const { return epoch_; }
+  // A builder of acceleration structures for a prefetch thread, tagged with this epoch (a scene
+  // built by an older tracer is built again when drawn); empty while there is no tracer yet:
+  // the first shadowed frame makes it, on the render thread.
+  SceneCache::TraceBuilder prefetchBuilder() const;
   // Drops the tracer after a failure (a lost device, say); the next tracer() makes a new one.
   void reset(const std::string& why);
   // The acceleration structures of `scene` on the tracer (which must exist): built on first use

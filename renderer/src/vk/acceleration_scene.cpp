@@ -85,6 +85,8 @@ std::unique_ptr<AccelerationScene> AccelerationScene::build(
   // Where the wall time goes (the log line): packing, the geometry's buffers, the rest of the
   // allocations and recording, and the submission (waited for only on the compacted path).
   const Stopwatch wallClock;
+  // The render thread and a prefetch thread may both build: one at a time.
+  const std::unique_lock<std::mutex> oneBuild = device->buildLock();
   // The previous build may still read the transient buffers that this one fills.
   device->oneTimeCommands().retire(*device);
   device->deferredRelease().collect();
@@ -141,7 +143,6 @@ AccelerationScene::~AccelerationScene() {
   };
   try {
     device_->deferredRelease().release(
-        device_->queue(),
         std::make_shared<Structures>(Structures{std::move(bottomLevels_), std::move(topLevel_)}));
   } catch (const std::bad_alloc&) {
     device_->waitIdleNoThrow();  // the members, whatever was not moved, go right after this

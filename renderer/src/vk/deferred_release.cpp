@@ -6,6 +6,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "vk/vulkan_device.hpp"
+
 namespace lgh::vk {
 namespace {
 
@@ -14,7 +16,7 @@ constexpr std::uint64_t kWaitNs = std::chrono::nanoseconds(std::chrono::seconds(
 
 }  // namespace
 
-DeferredRelease::DeferredRelease(const ::vk::raii::Device& device) : device_(&device) {}
+DeferredRelease::DeferredRelease(const VulkanDevice& device) : device_(&device) {}
 
 DeferredRelease::~DeferredRelease() {
   const std::lock_guard lock(mutex_);
@@ -28,18 +30,18 @@ DeferredRelease::~DeferredRelease() {
 }
 
 ::vk::raii::Fence DeferredRelease::takeFence() {
-  if (spareFences_.empty()) return {*device_, ::vk::FenceCreateInfo{}};
+  if (spareFences_.empty()) return {device_->device(), ::vk::FenceCreateInfo{}};
   ::vk::raii::Fence fence = std::move(spareFences_.back());
   spareFences_.pop_back();
-  device_->resetFences(*fence);
+  device_->device().resetFences(*fence);
   return fence;
 }
 
-void DeferredRelease::release(const ::vk::raii::Queue& queue, std::shared_ptr<void> held) noexcept {
+void DeferredRelease::release(std::shared_ptr<void> held) noexcept {
   const std::lock_guard lock(mutex_);
   try {
     ::vk::raii::Fence fence = takeFence();
-    queue.submit(::vk::SubmitInfo{}, *fence);
+    device_->submit(::vk::SubmitInfo{}, *fence);
     pending_.push_back({std::move(fence), std::move(held)});
   } catch (const ::vk::SystemError& error) {
     spdlog::warn("vulkan: a deferred release could not be submitted ({}): waiting for the device",
@@ -70,7 +72,7 @@ void DeferredRelease::collectLocked(bool waitForOldest) noexcept {
     Pending& oldest = pending_.front();
     ::vk::Result status = ::vk::Result::eNotReady;
     try {
-      status = waitForOldest ? device_->waitForFences(*oldest.fence, VK_TRUE, kWaitNs)
+      status = waitForOldest ? device_->device().waitForFences(*oldest.fence, VK_TRUE, kWaitNs)
                              : oldest.fence.getStatus();
     } catch (const ::vk::SystemError& error) {
       // The device is lost: nothing runs on it any more.

@@ -24,7 +24,8 @@ class DeferredRelease {
   // Releases not yet known to be done beyond this many: the oldest is waited for.
   static constexpr std::size_t kMaxPending = 16;
 
-  explicit DeferredRelease(const ::vk::raii::Device& device);
+  // `device` outlives this (VulkanDevice owns it).
+  explicit DeferredRelease(const VulkanDevice& device);
   // Waits for what is still pending, then destroys it.
   ~DeferredRelease();
   DeferredRelease(const DeferredRelease&) = delete;
@@ -34,7 +35,7 @@ class DeferredRelease {
   // the work submitted so far; destroys what earlier releases held that is done by now. Throws
   // nothing: where the empty submission fails (a lost device), it waits for the device and
   // destroys `held` at once.
-  void release(const ::vk::raii::Queue& queue, std::shared_ptr<void> held) noexcept;
+  void release(std::shared_ptr<void> held) noexcept;
   // Destroys what is done, without waiting.
   void collect() noexcept;
   // Releases still pending (for tests and logs).
@@ -49,7 +50,7 @@ class DeferredRelease {
   ::vk::raii::Fence takeFence();
   void collectLocked(bool waitForOldest) noexcept;
 
-  const ::vk::raii::Device* device_;
+  const VulkanDevice* device_;
   mutable std::mutex mutex_;
   std::deque<Pending> pending_;
   std::vector<::vk::raii::Fence> spareFences_;  // signalled fences, reset before reuse

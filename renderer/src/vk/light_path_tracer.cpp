@@ -379,7 +379,7 @@ void LightPathTracer::submit(bool useSemaphores) {
   const ::vk::Semaphore wait = useSemaphores ? semaphores_->glDone() : ::vk::Semaphore{};
   const ::vk::Semaphore signal = useSemaphores ? semaphores_->vkDone() : ::vk::Semaphore{};
   const ::vk::PipelineStageFlags waitStage = Stage::eAllCommands;
-  device_->queue().submit(
+  device_->submit(
       ::vk::SubmitInfo{.waitSemaphoreCount = useSemaphores ? 1U : 0U,
                        .pWaitSemaphores = useSemaphores ? &wait : nullptr,
                        .pWaitDstStageMask = useSemaphores ? &waitStage : nullptr,

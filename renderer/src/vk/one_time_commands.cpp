@@ -63,8 +63,7 @@ void OneTimeCommands::submit(const VulkanDevice& device, const CommandRecorder& 
   commands.end();
   device.device().resetFences(*fence_);
   const ::vk::CommandBuffer handle = *commands;
-  device.queue().submit(::vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &handle},
-                        *fence_);
+  device.submit(::vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &handle}, *fence_);
   pending_ = true;
   retired_ = std::move(retired);
 }

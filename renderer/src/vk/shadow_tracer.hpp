@@ -217,6 +217,11 @@ class ShadowTracer {
   // Builds the acceleration structures from the CPU scene (positions and indices; every
   // instance's world transform). Throws lgh::Error(Internal) on a Vulkan failure.
   virtual std::unique_ptr<TraceScene> buildScene(const Scene& scene) = 0;
+  // buildScene for another thread (a scene's prefetch, while the render thread traces): holds
+  // the device, not the tracer, so it may outlive the tracer; returns once the build has
+  // finished on the GPU (its buildGpuMs() waits for nothing). Throws as buildScene does.
+  using SceneBuilder = std::function<std::unique_ptr<TraceScene>(const Scene&)>;
+  virtual SceneBuilder sceneBuilder() const = 0;
 
   // The ray batch buffers for `shape`, reallocated (new generation, new fds) only when they must
   // grow or the transport changes. Interop needs info().externalMemoryFd.

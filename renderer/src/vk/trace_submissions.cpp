@@ -44,14 +44,14 @@ void TraceSubmissions::submit(std::uint32_t slot, ::vk::Semaphore wait,
   const ::vk::CommandBuffer commands = *commands_[slot];
   const bool waits = static_cast<bool>(wait);
   const bool signals = static_cast<bool>(signal);
-  device_->queue().submit(::vk::SubmitInfo{.waitSemaphoreCount = waits ? 1U : 0U,
-                                           .pWaitSemaphores = waits ? &wait : nullptr,
-                                           .pWaitDstStageMask = waits ? &waitStage : nullptr,
-                                           .commandBufferCount = 1,
-                                           .pCommandBuffers = &commands,
-                                           .signalSemaphoreCount = signals ? 1U : 0U,
-                                           .pSignalSemaphores = signals ? &signal : nullptr},
-                          *fences_[slot]);
+  device_->submit(::vk::SubmitInfo{.waitSemaphoreCount = waits ? 1U : 0U,
+                                   .pWaitSemaphores = waits ? &wait : nullptr,
+                                   .pWaitDstStageMask = waits ? &waitStage : nullptr,
+                                   .commandBufferCount = 1,
+                                   .pCommandBuffers = &commands,
+                                   .signalSemaphoreCount = signals ? 1U : 0U,
+                                   .pSignalSemaphores = signals ? &signal : nullptr},
+                  *fences_[slot]);
   inFlight_[slot] = true;
   numberOf_[slot] = ++submitted_;
 }

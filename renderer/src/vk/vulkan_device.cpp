@@ -102,11 +102,22 @@ VulkanDevice::VulkanDevice(::vk::raii::Instance instance, ::vk::raii::PhysicalDe
       memory_(physical_.getMemoryProperties()),
       info_(describe(physical_, capabilities_)),
       oneTimeCommands_(std::make_unique<OneTimeCommands>(*this)),
-      deferredRelease_(std::make_unique<DeferredRelease>(device_)) {}
+      deferredRelease_(std::make_unique<DeferredRelease>(*this)) {}
+
+void VulkanDevice::submit(const ::vk::SubmitInfo& info, ::vk::Fence fence) const {
+  const std::lock_guard lock(queueMutex_);
+  queue_.submit(info, fence);
+}
+
+void VulkanDevice::waitIdle() const {
+  // vkDeviceWaitIdle asks for every queue of the device to be externally synchronised.
+  const std::lock_guard lock(queueMutex_);
+  device_.waitIdle();
+}
 
 void VulkanDevice::waitIdleNoThrow() const noexcept {
   try {
-    device_.waitIdle();
+    waitIdle();
   } catch (const ::vk::SystemError& error) {
     spdlog::warn("vulkan: waiting for the device failed: {}", error.what());
   }

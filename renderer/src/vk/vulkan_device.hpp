@@ -1,11 +1,14 @@
 // The tracer's Vulkan device: the instance, the physical device that is the GL device, a logical
 // device with acceleration structures and every tracing path it offers, one queue that computes,
 // and the limits the rest of the tracer aligns to. Shared (std::shared_ptr) by the tracer and the
-// TraceScenes it built, so that either may go first.
+// TraceScenes it built, so that either may go first. The render thread traces on it while a
+// prefetch thread may build a scene's acceleration structures (ShadowTracer::sceneBuilder): the
+// queue is submitted to under a lock (submit), and builds take buildLock() for their whole run.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 
 #include "vk/deferred_release.hpp"
 #include "vk/device_capabilities.hpp"
@@ -35,7 +38,13 @@ class VulkanDevice {
   VulkanDevice& operator=(const VulkanDevice&) = delete;
 
   const ::vk::raii::Device& device() const { return device_; }
+  // The queue, for what needs it besides submissions; submit to it with submit().
   const ::vk::raii::Queue& queue() const { return queue_; }
+  // vkQueueSubmit under the queue's lock: the queue is shared by threads.
+  void submit(const ::vk::SubmitInfo& info, ::vk::Fence fence) const;
+  // Held by an acceleration-structure build from start to end: builds share the one-time
+  // command buffer's transient buffers (vk/one_time_commands.hpp), one build at a time.
+  std::unique_lock<std::mutex> buildLock() const { return std::unique_lock(buildMutex_); }
   std::uint32_t queueFamily() const { return queueFamily_; }
   const DeviceCapabilities& capabilities() const { return capabilities_; }
   const DeviceLimits& limits() const { return limits_; }
@@ -49,8 +58,10 @@ class VulkanDevice {
   // Holds objects until the work submitted so far is done (vk/deferred_release.hpp).
   DeferredRelease& deferredRelease() const { return *deferredRelease_; }
 
-  // Waits for the queue to finish; for destructors, so it throws nothing (a lost device has
-  // nothing left to wait for).
+  // Waits for the queue to finish (under the queue's lock). Throws vk::SystemError when the
+  // device is lost.
+  void waitIdle() const;
+  // The same for destructors, so it throws nothing (a lost device has nothing left to wait for).
   void waitIdleNoThrow() const noexcept;
 
  private:
@@ -65,6 +76,8 @@ class VulkanDevice {
   DeviceLimits limits_;
   ::vk::PhysicalDeviceMemoryProperties memory_;
   TracerInfo info_;
+  mutable std::mutex queueMutex_;
+  mutable std::mutex buildMutex_;
   // Declared after device_: destroyed before it.
   std::unique_ptr<OneTimeCommands> oneTimeCommands_;
   std::unique_ptr<DeferredRelease> deferredRelease_;

@@ -95,6 +95,16 @@ class VulkanShadowTracer final : public ShadowTracer {
                                  [&] { return AccelerationScene::build(device_, scene); });
   }
 
+  SceneBuilder sceneBuilder() const override {
+    return [device = device_](const Scene& scene) -> std::unique_ptr<TraceScene> {
+      return translateVulkanErrors("buildScene", [&] {
+        std::unique_ptr<AccelerationScene> built = AccelerationScene::build(device, scene);
+        built->buildGpuMs();  // waits here, on the caller's thread, not on the render thread
+        return built;
+      });
+    };
+  }
+
   const RayBuffers& rayBuffers(const RayBatchShape& shape, Transport transport) override {
     return translateVulkanErrors("rayBuffers", [&]() -> const RayBuffers& {
       checkShape(shape, device_->limits().maxStorageBufferRange);
