@@ -171,7 +171,13 @@ void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& opt
   } catch (const Error&) {
     return;  // a bad path: get() reports it
   }
-  if (key.empty() || key == "demo" || prefetches_.contains(key)) return;
+  if (key.empty() || key == "demo") return;
+  if (const auto pending = prefetches_.find(key); pending != prefetches_.end()) {
+    // The same scene again within the look-ahead (a batch that repeats an asset): one parse
+    // serves the first; get() starts the next where the cache will not keep the scene.
+    ++pending->second.laterHints;
+    return;
+  }
   for (const Slot& slot : slots_) {
     if (slot.key == key) return;
   }
@@ -179,22 +185,28 @@ void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& opt
   // comes later than the hints after it).
   if (prefetches_.size() >= maxPrefetches()) {
     std::erase_if(prefetches_, [](const auto& entry) {
-      return entry.second.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+      return entry.second.parsed.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
     });
   }
   if (prefetches_.size() >= maxPrefetches()) return;
+  startPrefetch(key, source, options, std::move(buildTrace), 0);
+}
+
+void SceneCache::startPrefetch(const std::string& key, const SceneSource& source,
+                               const SceneLoadOptions& options, TraceBuilder buildTrace,
+                               int laterHints) {
   try {
     if (!prefetchThreads_) {
       prefetchThreads_ = std::make_unique<TaskPool>(static_cast<int>(maxPrefetches()));
     }
     auto parsing = std::make_shared<std::packaged_task<Parsed()>>(
-        [rendererOptions = options_, parsers = parsers_.get(), source, options,
-         buildTrace = std::move(buildTrace)] {
+        [rendererOptions = options_, parsers = parsers_.get(), source, options, buildTrace] {
           Parsed parsed = parse(rendererOptions, parsers, source, options);
           if (buildTrace) parsed.trace = buildTraceAhead(buildTrace, parsed.scene);
           return parsed;
         });
-    prefetches_.emplace(key, parsing->get_future());
+    prefetches_.emplace(key, Prefetch{parsing->get_future(), source, options,
+                                      std::move(buildTrace), laterHints});
     prefetchThreads_->submit([parsing] { (*parsing)(); });  // its exceptions go to the future
   } catch (const std::exception& error) {  // no thread (std::system_error), no memory
     spdlog::warn("scene cache: no thread for a prefetch ({}); the scene is parsed when drawn",
@@ -218,8 +230,10 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
   ++misses_;
   auto entry = std::make_shared<CachedScene>();
   Parsed parsed;
+  std::optional<Prefetch> next;  // for the same scene hinted again behind this one
   if (auto pending = prefetches_.find(key); pending != prefetches_.end()) {
-    std::future<Parsed> parsing = std::move(pending->second);
+    std::future<Parsed> parsing = std::move(pending->second.parsed);
+    if (pending->second.laterHints > 0) next = std::move(pending->second);
     prefetches_.erase(pending);
     const Stopwatch wait;
     parsed = parsing.get();  // rethrows the parse's error
@@ -246,6 +260,12 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
   lookup.entry = entry;
   slots_.push_front({key, entry});
   evictOverBudget();
+  // Kept only as the most recent scene (over the budget: with the cache off, always), the scene
+  // is gone before its later hint is drawn: that one gets a parse of its own.
+  if (next && stats().bytes > options_.sceneCacheBytes) {
+    startPrefetch(key, next->source, next->options, std::move(next->buildTrace),
+                  next->laterHints - 1);
+  }
   return lookup;
 }
 

@@ -10,6 +10,7 @@
 #include <future>
 #include <list>
 #include <map>
+#include <optional>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -125,8 +126,18 @@ class SceneCache {
   void evictOverBudget();
   RendererOptions options_;
   std::unique_ptr<worker::SceneWorkerPool> parsers_;
+  // A parse started by prefetch(); `laterHints`: hints of the same key while it was pending.
+  struct Prefetch {
+    std::future<Parsed> parsed;
+    SceneSource source;
+    SceneLoadOptions options;
+    TraceBuilder buildTrace;
+    int laterHints = 0;
+  };
+  void startPrefetch(const std::string& key, const SceneSource& source,
+                     const SceneLoadOptions& options, TraceBuilder buildTrace, int laterHints);
   // By key. Declared after parsers_ so that its parses (which may use them) end first.
-  std::map<std::string, std::future<Parsed>> prefetches_;
+  std::map<std::string, Prefetch> prefetches_;
   // The threads that wait for the prefetched parses, made on the first hint and kept: a thread
   // made per hint cost the render thread a clone() per new scene. Declared after parsers_ and
   // prefetches_: joined before they go.
