@@ -53,8 +53,9 @@ struct RendererOptions {
   // Frames whose GPU work and read-back may be under way at once (Renderer::submit): the GPU
   // works on frame N while the CPU issues frames N + 1 and on. A shadowed frame's hand-overs
   // between GL and Vulkan make its latency several times its GPU time (docs/BENCHMARKS.md,
-  // "GPU targets, fourth round"): with 2, a render thread issuing small frames waited for them.
-  int framesInFlight = 4;
+  // "GPU targets, fourth and fifth rounds"): with 2, and then with 4 once it issued them faster,
+  // a render thread issuing small frames waited for them.
+  int framesInFlight = 8;
   // Untrusted assets (paths, uploads, inline GLBs) parsed in a worker process
   // (lgh/scene_worker.hpp) rather than in this one: a parser crash or runaway then fails one load,
   // not the process. Empty executable: in this process.

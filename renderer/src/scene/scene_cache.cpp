@@ -202,7 +202,11 @@ void SceneCache::startPrefetch(const std::string& key, const SceneSource& source
     auto parsing = std::make_shared<std::packaged_task<Parsed()>>(
         [rendererOptions = options_, parsers = parsers_.get(), source, options, buildTrace] {
           Parsed parsed = parse(rendererOptions, parsers, source, options);
-          if (buildTrace) parsed.trace = buildTraceAhead(buildTrace, parsed.scene);
+          if (buildTrace) {
+            const Stopwatch build;
+            parsed.trace = buildTraceAhead(buildTrace, parsed.scene);
+            if (parsed.trace.scene) parsed.buildMs = build.elapsedMs();
+          }
           return parsed;
         });
     prefetches_.emplace(key, Prefetch{parsing->get_future(), source, options,
@@ -240,8 +244,11 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
     lookup.prefetched = true;
     // What the thumbnail benchmarks' "scene wait" is made of (--log-level debug).
     if (const double waitedMs = wait.elapsedMs(); waitedMs >= 1.0) {
-      spdlog::debug("scene cache: waited {:.2f} ms for the prefetched parse of {} ({:.2f} ms)",
-                    waitedMs, key, parsed.loadMs);
+      spdlog::debug(
+          "scene cache: waited {:.2f} ms for the prefetched parse of {} (parse {:.2f} ms{})",
+          waitedMs, key, parsed.loadMs,
+          parsed.buildMs >= 0.0 ? fmt::format(", structures built ahead in {:.2f} ms", parsed.buildMs)
+                                : std::string());
     }
   } else {
     parsed = parse(options_, parsers_.get(), source, options);

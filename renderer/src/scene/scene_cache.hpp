@@ -104,6 +104,7 @@ class SceneCache {
     Scene scene;
     double loadMs = 0.0;
     TraceSceneSlot trace;  // built ahead, or empty
+    double buildMs = -1.0;  // the build ahead's wall time (< 0: none)
   };
   static constexpr std::size_t kMaxTrianglesBuiltAhead = 250'000;
   static TraceSceneSlot buildTraceAhead(const TraceBuilder& build, const Scene& scene);
