@@ -172,9 +172,11 @@ std::size_t Renderer::pendingFrames() const { return impl_->pending.size(); }
 void Renderer::prefetch(const RenderRequest& request) {
   // A frame that traces rays needs the scene's acceleration structures: built on the prefetch
   // thread too, off the render thread.
-  const bool traces = request.settings.shadows.mode != ShadowMode::Off || request.settings.gi.enabled;
-  impl_->cache.prefetch(request.scene, loadOptionsOf(request),
-                        traces ? impl_->shadowDevice.prefetchBuilder() : SceneCache::TraceBuilder{});
+  const bool traces =
+      request.settings.shadows.mode != ShadowMode::Off || request.settings.gi.enabled;
+  impl_->cache.prefetch(
+      request.scene, loadOptionsOf(request),
+      traces ? impl_->shadowDevice.prefetchBuilder() : SceneCache::TraceBuilder{});
 }
 
 std::size_t Renderer::prefetchDepth() const { return impl_->cache.prefetchDepth(); }

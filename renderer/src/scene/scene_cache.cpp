@@ -209,8 +209,8 @@ void SceneCache::startPrefetch(const std::string& key, const SceneSource& source
           }
           return parsed;
         });
-    prefetches_.emplace(key, Prefetch{parsing->get_future(), source, options,
-                                      std::move(buildTrace), laterHints});
+    prefetches_.emplace(
+        key, Prefetch{parsing->get_future(), source, options, std::move(buildTrace), laterHints});
     prefetchThreads_->submit([parsing] { (*parsing)(); });  // its exceptions go to the future
   } catch (const std::exception& error) {  // no thread (std::system_error), no memory
     spdlog::warn("scene cache: no thread for a prefetch ({}); the scene is parsed when drawn",
@@ -247,8 +247,9 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
       spdlog::debug(
           "scene cache: waited {:.2f} ms for the prefetched parse of {} (parse {:.2f} ms{})",
           waitedMs, key, parsed.loadMs,
-          parsed.buildMs >= 0.0 ? fmt::format(", structures built ahead in {:.2f} ms", parsed.buildMs)
-                                : std::string());
+          parsed.buildMs >= 0.0
+              ? fmt::format(", structures built ahead in {:.2f} ms", parsed.buildMs)
+              : std::string());
     }
   } else {
     parsed = parse(options_, parsers_.get(), source, options);

@@ -10,8 +10,8 @@
 #include <future>
 #include <list>
 #include <map>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -103,7 +103,7 @@ class SceneCache {
   struct Parsed {
     Scene scene;
     double loadMs = 0.0;
-    TraceSceneSlot trace;  // built ahead, or empty
+    TraceSceneSlot trace;   // built ahead, or empty
     double buildMs = -1.0;  // the build ahead's wall time (< 0: none)
   };
   static constexpr std::size_t kMaxTrianglesBuiltAhead = 250'000;

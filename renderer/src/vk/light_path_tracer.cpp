@@ -379,15 +379,14 @@ void LightPathTracer::submit(bool useSemaphores) {
   const ::vk::Semaphore wait = useSemaphores ? semaphores_->glDone() : ::vk::Semaphore{};
   const ::vk::Semaphore signal = useSemaphores ? semaphores_->vkDone() : ::vk::Semaphore{};
   const ::vk::PipelineStageFlags waitStage = Stage::eAllCommands;
-  device_->submit(
-      ::vk::SubmitInfo{.waitSemaphoreCount = useSemaphores ? 1U : 0U,
-                       .pWaitSemaphores = useSemaphores ? &wait : nullptr,
-                       .pWaitDstStageMask = useSemaphores ? &waitStage : nullptr,
-                       .commandBufferCount = 1,
-                       .pCommandBuffers = &commands,
-                       .signalSemaphoreCount = useSemaphores ? 1U : 0U,
-                       .pSignalSemaphores = useSemaphores ? &signal : nullptr},
-      *fence_);
+  device_->submit(::vk::SubmitInfo{.waitSemaphoreCount = useSemaphores ? 1U : 0U,
+                                   .pWaitSemaphores = useSemaphores ? &wait : nullptr,
+                                   .pWaitDstStageMask = useSemaphores ? &waitStage : nullptr,
+                                   .commandBufferCount = 1,
+                                   .pCommandBuffers = &commands,
+                                   .signalSemaphoreCount = useSemaphores ? 1U : 0U,
+                                   .pSignalSemaphores = useSemaphores ? &signal : nullptr},
+                  *fence_);
   inFlight_ = true;
   ++submitted_;
 }
