@@ -43,6 +43,12 @@ TEST(ScenePrefetch, AnAssetHintedTwiceIsParsedAheadForBothDrawsWithTheCacheOff) 
   EXPECT_TRUE(parsedAhead(again)) << "the second hint of the asset was dropped";
   EXPECT_FALSE(again.sceneCacheHit);
   EXPECT_EQ(first.pixels.size(), again.pixels.size());
+  // Each GL-timed pass also says what issuing it cost the render thread (cpu_ms).
+  for (const lgh::TimingRow& row : again.timings.rows) {
+    if (row.name == "gbuffer") EXPECT_GE(row.cpuMilliseconds, 0.0);
+    if (row.clock == lgh::TimingRow::Clock::Cpu) EXPECT_LT(row.cpuMilliseconds, 0.0) << row.name;
+  }
+  EXPECT_GE(again.timings.get("gbuffer"), 0.0);
 }
 
 TEST(ScenePrefetch, AWarmCacheParsesARepeatedAssetOnce) {

@@ -142,5 +142,25 @@ TEST(TimingTable, AppendMergedKeepsTheLargerOfTheTwoTimes) {
   EXPECT_DOUBLE_EQ(frame.gpuTotal(), 0.9);
 }
 
+// A GL-timed pass carries the render thread's time issuing it (cpu_ms); rows without one (CPU
+// steps, Vulkan's own timestamps) have none in JSON, and a merged row keeps GL's.
+TEST(TimingTable, CpuMillisecondsOfAPassGoToJsonAndSurviveAMerge) {
+  TimingTable frame;
+  frame.add("gbuffer", TimingRow::Clock::Gpu, 1.25);
+  frame.rows.back().cpuMilliseconds = 0.5;
+  frame.add("gi vpls", TimingRow::Clock::Gpu, 0.6);
+  frame.rows.back().cpuMilliseconds = 0.25;
+  frame.add("submit", TimingRow::Clock::Cpu, 3.0);
+  TimingTable vulkan;
+  vulkan.add("gi vpls", TimingRow::Clock::Gpu, 0.9);
+  frame.appendMerged(vulkan);
+  const nlohmann::json expected = nlohmann::json::parse(R"([
+    {"pass": "gbuffer", "clock": "gpu", "ms": 1.25, "cpu_ms": 0.5},
+    {"pass": "gi vpls", "clock": "gpu", "ms": 0.9, "cpu_ms": 0.25},
+    {"pass": "submit", "clock": "cpu", "ms": 3.0}
+  ])");
+  EXPECT_EQ(frame.toJson(), expected);
+}
+
 }  // namespace
 }  // namespace lgh
