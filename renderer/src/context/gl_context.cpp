@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include "gl/uniform_locations.hpp"
 #include "lgh/error.hpp"
 #include "lgh/image.hpp"
 
@@ -61,7 +60,6 @@ void GlContext::makeCurrent() {
 }
 
 void GlContext::releaseApi() {
-  gl::forgetUniformLocations(&api_);
   if (gl::currentApi() == &api_) gl::setCurrentApi(nullptr);
 }
 

@@ -6,7 +6,6 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "gl/uniform_locations.hpp"
 #include "passes/brdf_features.hpp"
 
 namespace lgh {
@@ -43,7 +42,7 @@ glm::vec3 modelSpecular(const Material& m, MaterialModel model) {
 class Uniforms {
  public:
   explicit Uniforms(GLuint program) : program_(program) {}
-  GLint at(const char* name) const { return gl::uniformLocation(program_, name); }
+  GLint at(const char* name) const { return glGetUniformLocation(program_, name); }
   void set(const char* name, float v) const { glProgramUniform1f(program_, at(name), v); }
   void set(const char* name, int v) const { glProgramUniform1i(program_, at(name), v); }
   void set(const char* name, GLuint v) const { glProgramUniform1ui(program_, at(name), v); }
@@ -188,11 +187,11 @@ void drawSurface(GLuint program, const GpuScene::DrawItem& item, const Material&
   // Mirrored instances flip the winding; keep back-face culling right for them.
   glFrontFace(glm::determinant(glm::mat3(item.world)) < 0.0F ? GL_CW : GL_CCW);
   const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(item.world));
-  glProgramUniformMatrix4fv(program, gl::uniformLocation(program, "uWorld"), 1, GL_FALSE,
+  glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "uWorld"), 1, GL_FALSE,
                             glm::value_ptr(item.world));
-  glProgramUniformMatrix3fv(program, gl::uniformLocation(program, "uNormalMatrix"), 1, GL_FALSE,
+  glProgramUniformMatrix3fv(program, glGetUniformLocation(program, "uNormalMatrix"), 1, GL_FALSE,
                             glm::value_ptr(normalMatrix));
-  glProgramUniform1i(program, gl::uniformLocation(program, "uHasTangents"), item.tangents ? 1 : 0);
+  glProgramUniform1i(program, glGetUniformLocation(program, "uHasTangents"), item.tangents ? 1 : 0);
   glBindVertexArray(item.vertexArray);
   GLenum mode = GL_TRIANGLES;
   if (item.topology == Topology::Lines) mode = GL_LINES;
