@@ -189,10 +189,11 @@ void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& opt
     });
   }
   if (prefetches_.size() >= maxPrefetches()) return;
-  startPrefetch(key, source, options, std::move(buildTrace), 0);
+  startPrefetch(key, std::make_shared<const SceneSource>(source), options, std::move(buildTrace),
+                0);
 }
 
-void SceneCache::startPrefetch(const std::string& key, const SceneSource& source,
+void SceneCache::startPrefetch(const std::string& key, std::shared_ptr<const SceneSource> source,
                                const SceneLoadOptions& options, TraceBuilder buildTrace,
                                int laterHints) {
   try {
@@ -201,7 +202,7 @@ void SceneCache::startPrefetch(const std::string& key, const SceneSource& source
     }
     auto parsing = std::make_shared<std::packaged_task<Parsed()>>(
         [rendererOptions = options_, parsers = parsers_.get(), source, options, buildTrace] {
-          Parsed parsed = parse(rendererOptions, parsers, source, options);
+          Parsed parsed = parse(rendererOptions, parsers, *source, options);
           if (buildTrace) {
             const Stopwatch build;
             parsed.trace = buildTraceAhead(buildTrace, parsed.scene);
@@ -209,8 +210,8 @@ void SceneCache::startPrefetch(const std::string& key, const SceneSource& source
           }
           return parsed;
         });
-    prefetches_.emplace(
-        key, Prefetch{parsing->get_future(), source, options, std::move(buildTrace), laterHints});
+    prefetches_.emplace(key, Prefetch{parsing->get_future(), std::move(source), options,
+                                      std::move(buildTrace), laterHints});
     prefetchThreads_->submit([parsing] { (*parsing)(); });  // its exceptions go to the future
   } catch (const std::exception& error) {  // no thread (std::system_error), no memory
     spdlog::warn("scene cache: no thread for a prefetch ({}); the scene is parsed when drawn",

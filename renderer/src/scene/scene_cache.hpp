@@ -130,12 +130,12 @@ class SceneCache {
   // A parse started by prefetch(); `laterHints`: hints of the same key while it was pending.
   struct Prefetch {
     std::future<Parsed> parsed;
-    SceneSource source;
+    std::shared_ptr<const SceneSource> source;  // shared with the parse's task: one copy
     SceneLoadOptions options;
     TraceBuilder buildTrace;
     int laterHints = 0;
   };
-  void startPrefetch(const std::string& key, const SceneSource& source,
+  void startPrefetch(const std::string& key, std::shared_ptr<const SceneSource> source,
                      const SceneLoadOptions& options, TraceBuilder buildTrace, int laterHints);
   // By key. Declared after parsers_ so that its parses (which may use them) end first.
   std::map<std::string, Prefetch> prefetches_;

@@ -375,18 +375,9 @@ void LightPathTracer::record(const TraceRecorder& recorder, const LightPathBatch
 }
 
 void LightPathTracer::submit(bool useSemaphores) {
-  const ::vk::CommandBuffer commands = *commands_.front();
   const ::vk::Semaphore wait = useSemaphores ? semaphores_->glDone() : ::vk::Semaphore{};
   const ::vk::Semaphore signal = useSemaphores ? semaphores_->vkDone() : ::vk::Semaphore{};
-  const ::vk::PipelineStageFlags waitStage = Stage::eAllCommands;
-  device_->submit(::vk::SubmitInfo{.waitSemaphoreCount = useSemaphores ? 1U : 0U,
-                                   .pWaitSemaphores = useSemaphores ? &wait : nullptr,
-                                   .pWaitDstStageMask = useSemaphores ? &waitStage : nullptr,
-                                   .commandBufferCount = 1,
-                                   .pCommandBuffers = &commands,
-                                   .signalSemaphoreCount = useSemaphores ? 1U : 0U,
-                                   .pSignalSemaphores = useSemaphores ? &signal : nullptr},
-                  *fence_);
+  device_->submit(*commands_.front(), *fence_, wait, Stage::eAllCommands, signal);
   inFlight_ = true;
   ++submitted_;
 }

@@ -62,8 +62,7 @@ void OneTimeCommands::submit(const VulkanDevice& device, const CommandRecorder& 
   record(commands);
   commands.end();
   device.device().resetFences(*fence_);
-  const ::vk::CommandBuffer handle = *commands;
-  device.submit(::vk::SubmitInfo{.commandBufferCount = 1, .pCommandBuffers = &handle}, *fence_);
+  device.submit(*commands, *fence_);
   pending_ = true;
   retired_ = std::move(retired);
 }

@@ -41,17 +41,7 @@ std::uint32_t TraceSubmissions::acquire() {
 
 void TraceSubmissions::submit(std::uint32_t slot, ::vk::Semaphore wait,
                               ::vk::PipelineStageFlags waitStage, ::vk::Semaphore signal) {
-  const ::vk::CommandBuffer commands = *commands_[slot];
-  const bool waits = static_cast<bool>(wait);
-  const bool signals = static_cast<bool>(signal);
-  device_->submit(::vk::SubmitInfo{.waitSemaphoreCount = waits ? 1U : 0U,
-                                   .pWaitSemaphores = waits ? &wait : nullptr,
-                                   .pWaitDstStageMask = waits ? &waitStage : nullptr,
-                                   .commandBufferCount = 1,
-                                   .pCommandBuffers = &commands,
-                                   .signalSemaphoreCount = signals ? 1U : 0U,
-                                   .pSignalSemaphores = signals ? &signal : nullptr},
-                  *fences_[slot]);
+  device_->submit(*commands_[slot], *fences_[slot], wait, waitStage, signal);
   inFlight_[slot] = true;
   numberOf_[slot] = ++submitted_;
 }

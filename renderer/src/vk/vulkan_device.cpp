@@ -109,6 +109,20 @@ void VulkanDevice::submit(const ::vk::SubmitInfo& info, ::vk::Fence fence) const
   queue_.submit(info, fence);
 }
 
+void VulkanDevice::submit(::vk::CommandBuffer commands, ::vk::Fence fence, ::vk::Semaphore wait,
+                          ::vk::PipelineStageFlags waitStage, ::vk::Semaphore signal) const {
+  const bool waits = static_cast<bool>(wait);
+  const bool signals = static_cast<bool>(signal);
+  submit(::vk::SubmitInfo{.waitSemaphoreCount = waits ? 1U : 0U,
+                          .pWaitSemaphores = waits ? &wait : nullptr,
+                          .pWaitDstStageMask = waits ? &waitStage : nullptr,
+                          .commandBufferCount = 1,
+                          .pCommandBuffers = &commands,
+                          .signalSemaphoreCount = signals ? 1U : 0U,
+                          .pSignalSemaphores = signals ? &signal : nullptr},
+         fence);
+}
+
 void VulkanDevice::waitIdle() const {
   // vkDeviceWaitIdle asks for every queue of the device to be externally synchronised.
   const std::lock_guard lock(queueMutex_);

@@ -42,6 +42,10 @@ class VulkanDevice {
   const ::vk::raii::Queue& queue() const { return queue_; }
   // vkQueueSubmit under the queue's lock: the queue is shared by threads.
   void submit(const ::vk::SubmitInfo& info, ::vk::Fence fence) const;
+  // One command buffer, waiting on `wait` at `waitStage` and signalling `signal` where given
+  // (null semaphores: none), signalling `fence` when done.
+  void submit(::vk::CommandBuffer commands, ::vk::Fence fence, ::vk::Semaphore wait = {},
+              ::vk::PipelineStageFlags waitStage = {}, ::vk::Semaphore signal = {}) const;
   // Held by an acceleration-structure build from start to end: builds share the one-time
   // command buffer's transient buffers (vk/one_time_commands.hpp), one build at a time.
   std::unique_lock<std::mutex> buildLock() const { return std::unique_lock(buildMutex_); }
