@@ -64,6 +64,7 @@ FramePipeline::~FramePipeline() = default;
 void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached,
                          gl::GpuTimer& timer, FrameReport& report, OutputPixels pixels,
                          LghFrameProbe* probe) {
+  const Stopwatch setup;
   const OutputSettings& output = request.output;
   const CameraMatrices camera =
       computeCamera(request.camera, cached.scene, output.width, output.height);
@@ -78,6 +79,8 @@ void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached
   // The models and layers the G-buffer holds: what the lighting kernels are compiled for.
   const BrdfFeatures brdf = brdfFeatures(materials, cached.gpu->drawItems());
   const bool emission = surfacesEmit(materials, cached.gpu->drawItems());
+  // The render thread's work before the first pass: part of "submit", beside the passes' cpu_ms.
+  report.timings.add("frame setup", TimingRow::Clock::Cpu, setup.elapsedMs());
   {
     gl::ScopedGpuPass pass(timer, "gbuffer");
     gbufferPass_.run({.materials = &materials,

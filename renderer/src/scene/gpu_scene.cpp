@@ -30,7 +30,9 @@ glm::vec3 boundsCenter(const Primitive& primitive, const glm::mat4& world) {
 }  // namespace
 
 GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options)
-    : scene_(scene), options_(options), capabilities_(TextureCapabilities::query()) {
+    : scene_(scene),
+      options_(options),
+      capabilities_(options.capabilities ? *options.capabilities : TextureCapabilities::query()) {
   for (const Mesh& mesh : scene.meshes) {
     auto& gpuMesh = meshes_.emplace_back();
     for (const auto* list : {&mesh.primitives, &mesh.linesAndPoints}) {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -23,6 +24,9 @@ namespace lgh {
 struct GpuSceneOptions {
   float maxAnisotropy = 1.0F;  // the device's
   TextureCompression compression = TextureCompression::None;
+  // The device's formats, when the caller knows them (the scene cache asks once per context:
+  // four format queries per new scene were render-thread time); queried when not.
+  std::optional<TextureCapabilities> capabilities;
 };
 
 class GpuScene {

@@ -36,6 +36,7 @@ SceneCache::SceneCache(const RendererOptions& options) : options_(options) {
   GLfloat anisotropy = 1.0F;
   glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &anisotropy);
   maxAnisotropy_ = anisotropy;
+  textureCapabilities_ = TextureCapabilities::query();
 }
 
 SceneCache::~SceneCache() = default;
@@ -152,7 +153,8 @@ SceneCache::Parsed SceneCache::parse(const RendererOptions& rendererOptions,
                                      worker::SceneWorkerPool* parsers, const SceneSource& source,
                                      const SceneLoadOptions& options) {
   const Stopwatch timer;
-  Parsed parsed{loadScene(rendererOptions, parsers, source, options), 0.0};
+  Parsed parsed;
+  parsed.scene = loadScene(rendererOptions, parsers, source, options);
   parsed.loadMs = timer.elapsedMs();
   return parsed;
 }
@@ -160,11 +162,13 @@ SceneCache::Parsed SceneCache::parse(const RendererOptions& rendererOptions,
 std::size_t SceneCache::prefetchDepth() const {
   constexpr std::size_t kPerProcess = 8;
   constexpr std::size_t kMaxDepth = 64;
-  return parsers_ ? std::min(kPerProcess * parsers_->maxProcesses(), kMaxDepth) : 1;
+  constexpr std::size_t kInProcess = 2;
+  return parsers_ ? std::min(kPerProcess * parsers_->maxProcesses(), kMaxDepth) : kInProcess;
 }
 
 void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& options,
                           TraceBuilder buildTrace) {
+  const std::uint64_t hint = hints_++;
   std::string key;
   try {
     key = keyFor(source, options);
@@ -172,30 +176,61 @@ void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& opt
     return;  // a bad path: get() reports it
   }
   if (key.empty() || key == "demo") return;
-  if (const auto pending = prefetches_.find(key); pending != prefetches_.end()) {
-    // The same scene again within the look-ahead (a batch that repeats an asset): one parse
-    // serves the first; get() starts the next where the cache will not keep the scene.
-    ++pending->second.laterHints;
+  // Drawn right after the same scene (the views of one asset): the cache's newest entry.
+  if (key == lastHintKey_) return;
+  lastHintKey_ = key;
+  const bool keptWhenDrawn = options_.sceneCacheBytes > 0;
+  if (keptWhenDrawn) {
+    if (const auto pending = newestPrefetch(key); pending != prefetches_.end()) {
+      // The same scene again within the look-ahead (a batch that repeats an asset): one parse
+      // serves the first; get() starts the next where the cache will not keep the scene.
+      pending->second.laterHints.push_back(hint);
+      return;
+    }
+    for (const Slot& slot : slots_) {
+      if (slot.key == key) return;
+    }
+  }
+  // With the cache off every draw of a scene other than the newest is a parse of its own: each
+  // hint starts one, as early as a new scene's (started when its first draw was, the repeat of an
+  // asset 31 thumbnails later waited for its parse on the H200).
+  if (prefetches_.size() >= maxPrefetches()) dropStalePrefetches();
+  if (prefetches_.size() >= maxPrefetches()) {
+    // No room: the draw of the scene before it starts this one's parse, as with the cache on.
+    if (const auto pending = newestPrefetch(key); pending != prefetches_.end()) {
+      pending->second.laterHints.push_back(hint);
+    }
     return;
   }
-  for (const Slot& slot : slots_) {
-    if (slot.key == key) return;
-  }
-  // When full, finished parses nobody asked for yet make room (their request was cancelled, or
-  // comes later than the hints after it).
-  if (prefetches_.size() >= maxPrefetches()) {
-    std::erase_if(prefetches_, [](const auto& entry) {
-      return entry.second.parsed.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
-    });
-  }
-  if (prefetches_.size() >= maxPrefetches()) return;
   startPrefetch(key, std::make_shared<const SceneSource>(source), options, std::move(buildTrace),
-                0);
+                hint, {});
+}
+
+void SceneCache::dropStalePrefetches() {
+  const std::uint64_t horizon = 2 * maxPrefetches();
+  std::erase_if(prefetches_, [&](const auto& entry) {
+    const Prefetch& prefetch = entry.second;
+    return prefetch.hint + horizon < hints_ &&
+           prefetch.parsed.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+  });
+}
+
+std::multimap<std::string, SceneCache::Prefetch>::iterator SceneCache::oldestPrefetch(
+    const std::string& key) {
+  const auto first = prefetches_.lower_bound(key);
+  return first != prefetches_.end() && first->first == key ? first : prefetches_.end();
+}
+
+std::multimap<std::string, SceneCache::Prefetch>::iterator SceneCache::newestPrefetch(
+    const std::string& key) {
+  const auto [first, last] = prefetches_.equal_range(key);
+  return first == last ? prefetches_.end() : std::prev(last);
 }
 
 void SceneCache::startPrefetch(const std::string& key, std::shared_ptr<const SceneSource> source,
                                const SceneLoadOptions& options, TraceBuilder buildTrace,
-                               int laterHints) {
+                               std::uint64_t hint, std::deque<std::uint64_t> laterHints) {
+  auto entry = prefetches_.end();
   try {
     if (!prefetchThreads_) {
       prefetchThreads_ = std::make_unique<TaskPool>(static_cast<int>(maxPrefetches()));
@@ -210,13 +245,15 @@ void SceneCache::startPrefetch(const std::string& key, std::shared_ptr<const Sce
           }
           return parsed;
         });
-    prefetches_.emplace(key, Prefetch{parsing->get_future(), std::move(source), options,
-                                      std::move(buildTrace), laterHints});
+    // After the other hints of the key: get() takes them in hint order.
+    entry = prefetches_.emplace(key, Prefetch{parsing->get_future(), std::move(source), options,
+                                              std::move(buildTrace), hint,
+                                              std::move(laterHints)});
     prefetchThreads_->submit([parsing] { (*parsing)(); });  // its exceptions go to the future
   } catch (const std::exception& error) {  // no thread (std::system_error), no memory
     spdlog::warn("scene cache: no thread for a prefetch ({}); the scene is parsed when drawn",
                  error.what());
-    prefetches_.erase(key);
+    if (entry != prefetches_.end()) prefetches_.erase(entry);
   }
 }
 
@@ -236,9 +273,9 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
   auto entry = std::make_shared<CachedScene>();
   Parsed parsed;
   std::optional<Prefetch> next;  // for the same scene hinted again behind this one
-  if (auto pending = prefetches_.find(key); pending != prefetches_.end()) {
+  if (auto pending = oldestPrefetch(key); pending != prefetches_.end()) {
     std::future<Parsed> parsing = std::move(pending->second.parsed);
-    if (pending->second.laterHints > 0) next = std::move(pending->second);
+    if (!pending->second.laterHints.empty()) next = std::move(pending->second);
     prefetches_.erase(pending);
     const Stopwatch wait;
     parsed = parsing.get();  // rethrows the parse's error
@@ -264,7 +301,8 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
   lookup.loadMs = parsed.loadMs;
   const Stopwatch uploadTimer;
   entry->gpu = std::make_unique<GpuScene>(
-      entry->scene, GpuSceneOptions{maxAnisotropy_, options.textureCompression});
+      entry->scene,
+      GpuSceneOptions{maxAnisotropy_, options.textureCompression, textureCapabilities_});
   lookup.uploadMs = uploadTimer.elapsedMs();
   lookup.entry = entry;
   slots_.push_front({key, entry});
@@ -272,8 +310,10 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
   // Kept only as the most recent scene (over the budget: with the cache off, always), the scene
   // is gone before its later hint is drawn: that one gets a parse of its own.
   if (next && stats().bytes > options_.sceneCacheBytes) {
-    startPrefetch(key, next->source, next->options, std::move(next->buildTrace),
-                  next->laterHints - 1);
+    const std::uint64_t hint = next->laterHints.front();
+    next->laterHints.pop_front();
+    startPrefetch(key, next->source, next->options, std::move(next->buildTrace), hint,
+                  std::move(next->laterHints));
   }
   return lookup;
 }

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <future>
 #include <list>
@@ -85,16 +86,21 @@ class SceneCache {
   // the get() that asks for it then waits for that parse instead of parsing (its errors come
   // from that get()). With `buildTrace`, the same thread then builds the scene's acceleration
   // structures. The upload stays for get(), on the GL thread. At most maxPrefetches() parses
-  // run at once; a hint beyond that is dropped.
+  // run at once; a hint beyond that is dropped. Hints come in draw order: a hint of the key
+  // hinted just before is the cache's newest scene when drawn, and is not parsed; with the cache
+  // off (a budget of 0) every other hint of a scene starts a parse of its own.
   void prefetch(const SceneSource& source, const SceneLoadOptions& options = {},
                 TraceBuilder buildTrace = {});
-  // Scenes hinted ahead: eight per parser process (1 without them), at most 64, so that the
+  // Scenes hinted ahead: eight per parser process (2 without them, parsed side by side on this
+  // process's prefetch threads), at most 64, so that the
   // look-ahead covers a slow asset's parse (a draco or textured asset took 20-56 ms to parse on
   // the H200 machine while small ones drew in 1-2.5 ms each: with three hints per process the
   // render thread still waited 0.7 ms per thumbnail for them). Beyond the processes, parses wait
   // in hint order for a free one. Prefetches run at most one more than the depth.
   std::size_t prefetchDepth() const;
   std::size_t maxPrefetches() const { return prefetchDepth() + 1; }
+  // Parses started by prefetch() that no get() has taken yet.
+  std::size_t pendingPrefetches() const { return prefetches_.size(); }
 
   // Content key of a source ("" when it cannot be keyed; then it is never cached).
   std::string keyFor(const SceneSource& source, const SceneLoadOptions& options = {}) const;
@@ -127,23 +133,36 @@ class SceneCache {
   void evictOverBudget();
   RendererOptions options_;
   std::unique_ptr<worker::SceneWorkerPool> parsers_;
-  // A parse started by prefetch(); `laterHints`: hints of the same key while it was pending.
+  // A parse started by prefetch(); `hint`: its hint's number (prefetch() calls so far, the
+  // position of its draw in the look-ahead); `laterHints`: the numbers of later hints of the same
+  // key that it serves or whose parse starts when it is drawn.
   struct Prefetch {
     std::future<Parsed> parsed;
     std::shared_ptr<const SceneSource> source;  // shared with the parse's task: one copy
     SceneLoadOptions options;
     TraceBuilder buildTrace;
-    int laterHints = 0;
+    std::uint64_t hint = 0;
+    std::deque<std::uint64_t> laterHints;
   };
   void startPrefetch(const std::string& key, std::shared_ptr<const SceneSource> source,
-                     const SceneLoadOptions& options, TraceBuilder buildTrace, int laterHints);
-  // By key. Declared after parsers_ so that its parses (which may use them) end first.
-  std::map<std::string, Prefetch> prefetches_;
+                     const SceneLoadOptions& options, TraceBuilder buildTrace,
+                     std::uint64_t hint, std::deque<std::uint64_t> laterHints);
+  // Finished parses whose draw has passed (a cancelled request's, a failed ticket's): their
+  // hints are more than twice the look-ahead old.
+  void dropStalePrefetches();
+  // By key, several of a key in hint order (with the cache off, one per draw to come).
+  // Declared after parsers_ so that its parses (which may use them) end first.
+  std::multimap<std::string, Prefetch> prefetches_;
+  std::multimap<std::string, Prefetch>::iterator oldestPrefetch(const std::string& key);
+  std::multimap<std::string, Prefetch>::iterator newestPrefetch(const std::string& key);
+  std::string lastHintKey_;
+  std::uint64_t hints_ = 0;  // prefetch() calls so far
   // The threads that wait for the prefetched parses, made on the first hint and kept: a thread
   // made per hint cost the render thread a clone() per new scene. Declared after parsers_ and
   // prefetches_: joined before they go.
   std::unique_ptr<TaskPool> prefetchThreads_;
   float maxAnisotropy_ = 1.0F;
+  TextureCapabilities textureCapabilities_;
   struct Slot {
     std::string key;
     std::shared_ptr<CachedScene> entry;

@@ -206,7 +206,7 @@ double BatchTransport::trace(const BuffersFor& buffersFor, std::span<const std::
     traceOnVulkan(true);
     const auto [waited, waitCount] = interopBuffers(&BatchBufferUse::waited);
     glWaitSemaphoreEXT(vkDone_.id(), waitCount, waited.data(), 0, nullptr, nullptr);
-    return 0.0;
+    return cpu.elapsedMs();
   }
   if (mode_ == Mode::InteropFinish) {
     glFinish();

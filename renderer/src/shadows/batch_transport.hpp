@@ -69,7 +69,8 @@ class BatchTransport {
 
   // Hands what GL wrote to Vulkan, traces it, and makes what Vulkan wrote visible to GL's next
   // commands. `bytes`: of each buffer the batch uses (the staging copies). Returns the CPU
-  // milliseconds spent copying (staging) and waiting (finish/fence); 0 with semaphores.
+  // milliseconds of the hand-over: copying (staging), waiting (finish), or signalling the
+  // semaphores and recording and submitting Vulkan's commands (semaphores).
   double trace(const BuffersFor& buffersFor, std::span<const std::uint64_t> bytes,
                const TraceOnVulkan& traceOnVulkan);
 

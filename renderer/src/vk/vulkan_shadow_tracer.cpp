@@ -28,9 +28,11 @@
 namespace lgh::vk {
 namespace {
 
-// Submissions in flight at once: enough for the chunks of one frame to queue up behind
-// each other without waiting on the host.
-constexpr std::uint32_t kSlots = 4;
+// Submissions in flight at once: one per frame the renderer keeps unfinished
+// (RendererOptions::framesInFlight, 8) and as many again, so that submitting a frame's trace never
+// waits on the host for an earlier frame's (with 4, the fifth frame in flight waited for the
+// first one's trace to finish on the GPU).
+constexpr std::uint32_t kSlots = 16;
 
 ::vk::ShaderStageFlags traceStages(const DeviceCapabilities& capabilities) {
   ::vk::ShaderStageFlags stages;
