@@ -32,12 +32,13 @@ std::vector<std::optional<::vk::DeviceAddress>> meshAddresses(const BottomLevels
 
 // A large scene: compacted bottom levels (two submissions), then the top level (a third).
 std::pair<BottomLevels, AccelerationStructure> buildCompacted(const VulkanDevice& device,
+                                                              OneTimeCommands& oneTime,
                                                               const Scene& scene,
                                                               BottomLevelBuilds& bottomBuilds,
                                                               double& buildGpuMs) {
   BottomLevels bottom = bottomBuilds.buildCompacted();
   const auto instances = tlasInstances(scene, meshAddresses(bottom));
-  TopLevelBuild topBuild(device, static_cast<std::uint32_t>(instances.size()));
+  TopLevelBuild topBuild(device, oneTime, static_cast<std::uint32_t>(instances.size()));
   double topGpuMs = 0.0;
   AccelerationStructure top = topBuild.build(instances, topGpuMs);
   buildGpuMs = bottom.buildGpuMs + topGpuMs;
@@ -47,24 +48,24 @@ std::pair<BottomLevels, AccelerationStructure> buildCompacted(const VulkanDevice
 // A small scene: every structure in one buffer, built in one submission that nothing waits for
 // here; its GPU time goes to `buildGpuMs` when it is retired (OneTimeCommands).
 std::pair<BottomLevels, AccelerationStructure> buildTogether(
-    const VulkanDevice& device, const Scene& scene, BottomLevelBuilds& bottomBuilds,
-    const std::shared_ptr<double>& buildGpuMs, double& submitMs) {
+    const VulkanDevice& device, OneTimeCommands& oneTime, const Scene& scene,
+    BottomLevelBuilds& bottomBuilds, const std::shared_ptr<double>& buildGpuMs, double& submitMs) {
   // Sized for every instance: those of meshes without triangles are left out of the build.
-  TopLevelBuild topBuild(device, static_cast<std::uint32_t>(scene.instances.size()));
+  TopLevelBuild topBuild(device, oneTime, static_cast<std::uint32_t>(scene.instances.size()));
   const ::vk::DeviceSize topOffset =
       alignUp(bottomBuilds.storageBytes(), AccelerationStructure::kOffsetAlignment);
   const auto storage = std::make_shared<const DeviceBuffer>(
       device, accelerationStorage(topOffset + topBuild.storageBytes()));
   const ::vk::DeviceSize topScratch =
       alignUp(bottomBuilds.scratchBytes(), device.limits().scratchAlignment);
-  const DeviceBuffer& scratch = device.oneTimeCommands().transientBuffers().get(
+  const DeviceBuffer& scratch = oneTime.transientBuffers().get(
       device, accelerationScratch(device, topScratch + topBuild.scratchBytes()));
   BottomLevels bottom = bottomBuilds.place(storage, 0);
   AccelerationStructure top = topBuild.place(storage, topOffset);
   const auto instances = tlasInstances(scene, meshAddresses(bottom));
-  const TimestampQueries& timestamps = device.oneTimeCommands().timestamps();
+  const TimestampQueries& timestamps = oneTime.timestamps();
   const Stopwatch submission;
-  device.oneTimeCommands().submit(
+  oneTime.submit(
       device,
       [&](const ::vk::raii::CommandBuffer& commands) {
         bottomBuilds.recordUpload(commands);
@@ -81,7 +82,7 @@ std::pair<BottomLevels, AccelerationStructure> buildTogether(
 }  // namespace
 
 std::unique_ptr<AccelerationScene> AccelerationScene::build(
-    std::shared_ptr<const VulkanDevice> device, const Scene& scene) {
+    std::shared_ptr<const VulkanDevice> device, const Scene& scene, QueueRole role) {
   // Where the wall time goes (the log line): packing, the turn (waiting for another thread's
   // build and the previous build's GPU work), the geometry's buffers, the rest of the
   // allocations and recording, and the submission (waited for only on the compacted path).
@@ -89,24 +90,28 @@ std::unique_ptr<AccelerationScene> AccelerationScene::build(
   // Packing is the CPU's alone: prefetch threads pack side by side.
   const PackedGeometry geometry = packGeometry(scene);
   const double packMs = wallClock.elapsedMs();
-  // The render thread and a prefetch thread may both build: one at a time.
-  const std::unique_lock<std::mutex> oneBuild = device->buildLock();
+  // Builds of one queue role share its transient buffers: one at a time (the render thread's and
+  // a prefetch thread's side by side).
+  OneTimeCommands& oneTime = device->oneTimeCommands(role);
+  const std::unique_lock<std::mutex> oneBuild = oneTime.buildLock();
   // The previous build may still read the transient buffers that this one fills.
-  device->oneTimeCommands().retire(*device);
+  oneTime.retire(*device);
   device->deferredRelease().collect();
   const double turnMs = wallClock.elapsedMs() - packMs;
-  BottomLevelBuilds bottomBuilds(*device, geometry);
+  BottomLevelBuilds bottomBuilds(*device, oneTime, geometry);
   const double prepareMs = wallClock.elapsedMs() - packMs - turnMs;
   auto buildGpuMs = std::make_shared<double>(-1.0);
   double submitMs = -1.0;  // the compacted path's several submissions are not split out
   const bool compacted = bottomBuilds.worthCompacting();
   double compactedGpuMs = 0.0;
-  auto built = compacted ? buildCompacted(*device, scene, bottomBuilds, compactedGpuMs)
-                         : buildTogether(*device, scene, bottomBuilds, buildGpuMs, submitMs);
+  auto built = compacted
+                   ? buildCompacted(*device, oneTime, scene, bottomBuilds, compactedGpuMs)
+                   : buildTogether(*device, oneTime, scene, bottomBuilds, buildGpuMs, submitMs);
   if (compacted) *buildGpuMs = compactedGpuMs;
   std::unique_ptr<AccelerationScene> result(new AccelerationScene(
       std::move(device), std::move(built.first.structures), std::move(built.second)));
   result->buildGpuMs_ = std::move(buildGpuMs);
+  result->role_ = role;
   result->triangleCount_ = geometry.triangleCount;
   const double wallMs = wallClock.elapsedMs();
   spdlog::info(
@@ -126,8 +131,8 @@ std::unique_ptr<AccelerationScene> AccelerationScene::build(
 }
 
 std::function<double()> AccelerationScene::buildGpuMsReader() const {
-  return [device = device_, gpuMs = buildGpuMs_] {
-    if (*gpuMs < 0.0) device->oneTimeCommands().retire(*device);
+  return [device = device_, gpuMs = buildGpuMs_, role = role_] {
+    if (*gpuMs < 0.0) device->oneTimeCommands(role).retire(*device);
     return std::max(*gpuMs, 0.0);
   };
 }

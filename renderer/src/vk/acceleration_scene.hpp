@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "vk/acceleration_structure.hpp"
+#include "vk/queue_role.hpp"
 #include "vk/shadow_tracer.hpp"
 
 namespace lgh::vk {
@@ -17,8 +18,10 @@ class VulkanDevice;
 class AccelerationScene final : public TraceScene {
  public:
   // Throws vk::SystemError on a failing call, lgh::Error(TooLarge) past 2^32 vertices or indices.
+  // `role`: the queue (and one-time commands) the build is submitted with.
   static std::unique_ptr<AccelerationScene> build(std::shared_ptr<const VulkanDevice> device,
-                                                  const Scene& scene);
+                                                  const Scene& scene,
+                                                  QueueRole role = QueueRole::Frames);
   // Hands the structures to the device's deferred release: a trace in flight may still read them.
   ~AccelerationScene() override;
   AccelerationScene(const AccelerationScene&) = delete;
@@ -43,6 +46,7 @@ class AccelerationScene final : public TraceScene {
   // The build's GPU ms, written when its submission is retired; < 0 until then.
   std::shared_ptr<double> buildGpuMs_ = std::make_shared<double>(-1.0);
   std::size_t triangleCount_ = 0;
+  QueueRole role_ = QueueRole::Frames;  // where its build was submitted
 };
 
 }  // namespace lgh::vk

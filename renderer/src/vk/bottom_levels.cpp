@@ -28,14 +28,15 @@ void memoryBarrier(const ::vk::raii::CommandBuffer& commands, ::vk::PipelineStag
 // The positions, then the indices, in one device-local buffer, filled through a staging buffer.
 class GeometryUpload {
  public:
-  GeometryUpload(const VulkanDevice& device, const PackedGeometry& geometry)
+  GeometryUpload(const VulkanDevice& device, OneTimeCommands& oneTime,
+                 const PackedGeometry& geometry)
       : indexOffset_(geometry.positions.size() * kPositionBytes),
         bytes_(indexOffset_ + geometry.indices.size() * kIndexBytes),
-        staging_(&device.oneTimeCommands().transientBuffers().get(
+        staging_(&oneTime.transientBuffers().get(
             device, {.size = bytes_,
                      .usage = ::vk::BufferUsageFlagBits::eTransferSrc,
                      .memory = MemoryKind::HostVisible})),
-        buffer_(&device.oneTimeCommands().transientBuffers().get(
+        buffer_(&oneTime.transientBuffers().get(
             device,
             {.size = bytes_,
              .usage = ::vk::BufferUsageFlagBits::eTransferDst |
@@ -150,7 +151,7 @@ void recordSizeQuery(const ::vk::raii::CommandBuffer& commands,
       handles, ::vk::QueryType::eAccelerationStructureCompactedSizeKHR, *sizes, 0);
 }
 
-std::vector<AccelerationStructure> compact(const VulkanDevice& device,
+std::vector<AccelerationStructure> compact(const VulkanDevice& device, OneTimeCommands& oneTime,
                                            const std::vector<MeshBuild>& builds,
                                            const ::vk::raii::QueryPool& sizeQueries,
                                            const TimestampQueries& timestamps) {
@@ -166,7 +167,7 @@ std::vector<AccelerationStructure> compact(const VulkanDevice& device,
   for (const ::vk::DeviceSize size : sizes) {
     compacted.emplace_back(device, ::vk::AccelerationStructureTypeKHR::eBottomLevel, size);
   }
-  submitAndWait(device, [&](const ::vk::raii::CommandBuffer& commands) {
+  oneTime.submitAndWait(device, [&](const ::vk::raii::CommandBuffer& commands) {
     timestamps.begin(commands, 1);
     for (std::size_t i = 0; i < builds.size(); ++i) {
       commands.copyAccelerationStructureKHR(
@@ -182,19 +183,21 @@ std::vector<AccelerationStructure> compact(const VulkanDevice& device,
 }  // namespace
 
 struct BottomLevelBuilds::State {
-  explicit State(const VulkanDevice& owner) : device(owner) {}
+  State(const VulkanDevice& owner, OneTimeCommands& commands) : device(owner), oneTime(commands) {}
   const VulkanDevice& device;
+  OneTimeCommands& oneTime;
   std::optional<GeometryUpload> upload;  // none without triangles
   std::vector<MeshBuild> builds;
   std::vector<std::optional<std::size_t>> structureOfMesh;
   ::vk::DeviceSize scratchBytes = 0;
 };
 
-BottomLevelBuilds::BottomLevelBuilds(const VulkanDevice& device, const PackedGeometry& geometry)
-    : state_(std::make_unique<State>(device)) {
+BottomLevelBuilds::BottomLevelBuilds(const VulkanDevice& device, OneTimeCommands& oneTime,
+                                     const PackedGeometry& geometry)
+    : state_(std::make_unique<State>(device, oneTime)) {
   state_->structureOfMesh.resize(geometry.meshes.size());
   if (geometry.triangleCount == 0) return;
-  const GeometryUpload& upload = state_->upload.emplace(device, geometry);
+  const GeometryUpload& upload = state_->upload.emplace(device, oneTime, geometry);
   for (std::size_t m = 0; m < geometry.meshes.size(); ++m) {
     if (geometry.meshes[m].empty()) continue;
     state_->structureOfMesh[m] = state_->builds.size();
@@ -258,21 +261,22 @@ BottomLevels BottomLevelBuilds::buildCompacted() {
             .emplace_back(device, ::vk::AccelerationStructureTypeKHR::eBottomLevel, build.bytes)
             .handle();
   }
-  const DeviceBuffer& scratch = device.oneTimeCommands().transientBuffers().get(
+  OneTimeCommands& oneTime = state_->oneTime;
+  const DeviceBuffer& scratch = oneTime.transientBuffers().get(
       device, accelerationScratch(device, state_->scratchBytes));
   const ::vk::raii::QueryPool sizeQueries(
       device.device(), ::vk::QueryPoolCreateInfo{
                            .queryType = ::vk::QueryType::eAccelerationStructureCompactedSizeKHR,
                            .queryCount = static_cast<std::uint32_t>(builds.size())});
-  const TimestampQueries& timestamps = device.oneTimeCommands().timestamps();
-  submitAndWait(device, [&](const ::vk::raii::CommandBuffer& commands) {
+  const TimestampQueries& timestamps = oneTime.timestamps();
+  oneTime.submitAndWait(device, [&](const ::vk::raii::CommandBuffer& commands) {
     state_->upload->record(commands);
     timestamps.begin(commands, 0);
     recordMeshBuilds(commands, builds, scratch.address());
     recordSizeQuery(commands, builds, sizeQueries);
     timestamps.end(commands, 0);
   });
-  levels.structures = compact(device, builds, sizeQueries, timestamps);
+  levels.structures = compact(device, oneTime, builds, sizeQueries, timestamps);
   levels.buildGpuMs = timestamps.elapsedMs(0) + timestamps.elapsedMs(1);
   return levels;
 }

@@ -17,6 +17,7 @@
 
 namespace lgh::vk {
 
+class OneTimeCommands;
 class VulkanDevice;
 struct PackedGeometry;
 
@@ -30,7 +31,9 @@ struct BottomLevels {
 class BottomLevelBuilds {
  public:
   // Stages the geometry and sizes each mesh's structure; `geometry` must outlive this object.
-  BottomLevelBuilds(const VulkanDevice& device, const PackedGeometry& geometry);
+  // Its staging and geometry buffers are `oneTime`'s transient ones, its submissions `oneTime`'s.
+  BottomLevelBuilds(const VulkanDevice& device, OneTimeCommands& oneTime,
+                    const PackedGeometry& geometry);
   ~BottomLevelBuilds();
   BottomLevelBuilds(const BottomLevelBuilds&) = delete;
   BottomLevelBuilds& operator=(const BottomLevelBuilds&) = delete;

@@ -8,8 +8,9 @@
 
 namespace lgh::vk {
 
-OneTimeCommands::OneTimeCommands(const VulkanDevice& device)
+OneTimeCommands::OneTimeCommands(const VulkanDevice& device, QueueRole role)
     : device_(&device),
+      role_(role),
       pool_(
           device.device(),
           ::vk::CommandPoolCreateInfo{.flags = ::vk::CommandPoolCreateFlagBits::eTransient |
@@ -62,7 +63,7 @@ void OneTimeCommands::submit(const VulkanDevice& device, const CommandRecorder& 
   record(commands);
   commands.end();
   device.device().resetFences(*fence_);
-  device.submit(*commands, *fence_);
+  device.submit(*commands, *fence_, {}, {}, {}, role_);
   pending_ = true;
   retired_ = std::move(retired);
 }

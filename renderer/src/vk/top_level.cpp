@@ -15,10 +15,10 @@ namespace {
 constexpr ::vk::DeviceSize kInstanceAlignment = 16;
 
 const DeviceBuffer& uploadInstances(
-    const VulkanDevice& device,
+    const VulkanDevice& device, OneTimeCommands& oneTime,
     const std::vector<::vk::AccelerationStructureInstanceKHR>& instances) {
   const ::vk::DeviceSize bytes = instances.size() * sizeof(::vk::AccelerationStructureInstanceKHR);
-  const DeviceBuffer& buffer = device.oneTimeCommands().transientBuffers().get(
+  const DeviceBuffer& buffer = oneTime.transientBuffers().get(
       device, {.size = bytes,
                .usage = ::vk::BufferUsageFlagBits::eAccelerationStructureBuildInputReadOnlyKHR,
                .memory = MemoryKind::HostVisible,
@@ -30,8 +30,10 @@ const DeviceBuffer& uploadInstances(
 
 }  // namespace
 
-TopLevelBuild::TopLevelBuild(const VulkanDevice& device, std::uint32_t maxInstances)
+TopLevelBuild::TopLevelBuild(const VulkanDevice& device, OneTimeCommands& oneTime,
+                             std::uint32_t maxInstances)
     : device_(device),
+      oneTime_(oneTime),
       maxInstances_(maxInstances),
       geometry_{.geometryType = ::vk::GeometryTypeKHR::eInstances,
                 .geometry = ::vk::AccelerationStructureGeometryInstancesDataKHR{.arrayOfPointers =
@@ -53,10 +55,10 @@ AccelerationStructure TopLevelBuild::build(
   const auto storage = std::make_shared<const DeviceBuffer>(
       device_, accelerationStorage(std::max<::vk::DeviceSize>(storageBytes(), 1)));
   AccelerationStructure structure = place(storage, 0);
-  const DeviceBuffer& scratch = device_.oneTimeCommands().transientBuffers().get(
+  const DeviceBuffer& scratch = oneTime_.transientBuffers().get(
       device_, accelerationScratch(device_, scratchBytes()));
-  const TimestampQueries& timestamps = device_.oneTimeCommands().timestamps();
-  submitAndWait(device_, [&](const ::vk::raii::CommandBuffer& commands) {
+  const TimestampQueries& timestamps = oneTime_.timestamps();
+  oneTime_.submitAndWait(device_, [&](const ::vk::raii::CommandBuffer& commands) {
     timestamps.begin(commands, 0);
     record(commands, instances, scratch.address());
     timestamps.end(commands, 0);
@@ -79,7 +81,7 @@ void TopLevelBuild::record(const ::vk::raii::CommandBuffer& commands,
   if (instances.size() > maxInstances_) {
     throw std::logic_error("TopLevelBuild: more instances than it was sized for");
   }
-  instances_ = &uploadInstances(device_, instances);
+  instances_ = &uploadInstances(device_, oneTime_, instances);
   geometry_.geometry.instances.data = instances_->address();
   ::vk::AccelerationStructureBuildGeometryInfoKHR build = info();
   build.scratchData = scratch;

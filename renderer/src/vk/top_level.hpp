@@ -11,12 +11,14 @@
 
 namespace lgh::vk {
 
+class OneTimeCommands;
 class VulkanDevice;
 
 class TopLevelBuild {
  public:
-  // Sized for up to `maxInstances` instances.
-  TopLevelBuild(const VulkanDevice& device, std::uint32_t maxInstances);
+  // Sized for up to `maxInstances` instances; its instances, scratch and submission are
+  // `oneTime`'s.
+  TopLevelBuild(const VulkanDevice& device, OneTimeCommands& oneTime, std::uint32_t maxInstances);
 
   ::vk::DeviceSize storageBytes() const { return sizes_.accelerationStructureSize; }
   ::vk::DeviceSize scratchBytes() const { return sizes_.buildScratchSize; }
@@ -40,6 +42,7 @@ class TopLevelBuild {
   ::vk::AccelerationStructureBuildGeometryInfoKHR info() const;
 
   const VulkanDevice& device_;
+  OneTimeCommands& oneTime_;
   std::uint32_t maxInstances_;
   ::vk::AccelerationStructureGeometryKHR geometry_;
   ::vk::AccelerationStructureBuildSizesInfoKHR sizes_;

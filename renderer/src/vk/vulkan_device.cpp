@@ -1,5 +1,8 @@
 #include "vk/vulkan_device.hpp"
 
+#include <algorithm>
+#include <array>
+
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -19,11 +22,17 @@ std::uint32_t computeQueueFamily(const ::vk::raii::PhysicalDevice& physical) {
                                                   physical.getProperties().deviceName.data()));
 }
 
+// The frames' queue, and a second one for the builds made ahead where the family has it.
+std::uint32_t queueCountOf(const ::vk::raii::PhysicalDevice& physical, std::uint32_t family) {
+  return std::min(physical.getQueueFamilyProperties()[family].queueCount, 2U);
+}
+
 ::vk::raii::Device createDevice(const ::vk::raii::PhysicalDevice& physical,
                                 const DeviceCapabilities& capabilities, std::uint32_t family) {
-  const float priority = 1.0F;
-  const ::vk::DeviceQueueCreateInfo queue{
-      .queueFamilyIndex = family, .queueCount = 1, .pQueuePriorities = &priority};
+  const std::array<float, 2> priorities{1.0F, 1.0F};
+  const ::vk::DeviceQueueCreateInfo queue{.queueFamilyIndex = family,
+                                          .queueCount = queueCountOf(physical, family),
+                                          .pQueuePriorities = priorities.data()};
   FeatureChain features(capabilities.rayQuery, capabilities.rayTracingPipeline);
   features.requestTracerFeatures();
   const std::vector<const char*> extensions = deviceExtensions(capabilities);
@@ -98,19 +107,32 @@ VulkanDevice::VulkanDevice(::vk::raii::Instance instance, ::vk::raii::PhysicalDe
       queueFamily_(computeQueueFamily(physical_)),
       device_(createDevice(physical_, capabilities_, queueFamily_)),
       queue_(device_, queueFamily_, 0),
+      buildQueue_(queueCountOf(physical_, queueFamily_) > 1
+                      ? std::optional<::vk::raii::Queue>(std::in_place, device_, queueFamily_, 1)
+                      : std::nullopt),
       limits_(readLimits(physical_, capabilities_.rayTracingPipeline, queueFamily_)),
       memory_(physical_.getMemoryProperties()),
       info_(describe(physical_, capabilities_)),
-      oneTimeCommands_(std::make_unique<OneTimeCommands>(*this)),
-      deferredRelease_(std::make_unique<DeferredRelease>(*this)) {}
+      oneTimeCommands_(std::make_unique<OneTimeCommands>(*this, QueueRole::Frames)),
+      aheadCommands_(std::make_unique<OneTimeCommands>(*this, QueueRole::BuildsAhead)),
+      deferredRelease_(std::make_unique<DeferredRelease>(*this)) {
+  spdlog::info("vulkan: builds made ahead go to {}",
+               buildQueue_ ? "a queue of their own" : "the frames' queue (the family has one)");
+}
 
-void VulkanDevice::submit(const ::vk::SubmitInfo& info, ::vk::Fence fence) const {
+void VulkanDevice::submit(const ::vk::SubmitInfo& info, ::vk::Fence fence, QueueRole role) const {
+  if (role == QueueRole::BuildsAhead && buildQueue_) {
+    const std::lock_guard lock(buildQueueMutex_);
+    buildQueue_->submit(info, fence);
+    return;
+  }
   const std::lock_guard lock(queueMutex_);
   queue_.submit(info, fence);
 }
 
 void VulkanDevice::submit(::vk::CommandBuffer commands, ::vk::Fence fence, ::vk::Semaphore wait,
-                          ::vk::PipelineStageFlags waitStage, ::vk::Semaphore signal) const {
+                          ::vk::PipelineStageFlags waitStage, ::vk::Semaphore signal,
+                          QueueRole role) const {
   const bool waits = static_cast<bool>(wait);
   const bool signals = static_cast<bool>(signal);
   submit(::vk::SubmitInfo{.waitSemaphoreCount = waits ? 1U : 0U,
@@ -120,12 +142,12 @@ void VulkanDevice::submit(::vk::CommandBuffer commands, ::vk::Fence fence, ::vk:
                           .pCommandBuffers = &commands,
                           .signalSemaphoreCount = signals ? 1U : 0U,
                           .pSignalSemaphores = signals ? &signal : nullptr},
-         fence);
+         fence, role);
 }
 
 void VulkanDevice::waitIdle() const {
   // vkDeviceWaitIdle asks for every queue of the device to be externally synchronised.
-  const std::lock_guard lock(queueMutex_);
+  const std::scoped_lock lock(queueMutex_, buildQueueMutex_);
   device_.waitIdle();
 }
 

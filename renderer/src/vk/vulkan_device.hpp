@@ -2,17 +2,21 @@
 // device with acceleration structures and every tracing path it offers, one queue that computes,
 // and the limits the rest of the tracer aligns to. Shared (std::shared_ptr) by the tracer and the
 // TraceScenes it built, so that either may go first. The render thread traces on it while a
-// prefetch thread may build a scene's acceleration structures (ShadowTracer::sceneBuilder): the
-// queue is submitted to under a lock (submit), and builds take buildLock() for their whole run.
+// prefetch thread may build a scene's acceleration structures (ShadowTracer::sceneBuilder): each
+// queue is submitted to under a lock (submit), and builds take their one-time commands'
+// buildLock() for their whole run. Builds made ahead go to a queue of their own where the family
+// has a second one (QueueRole).
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 #include "vk/deferred_release.hpp"
 #include "vk/device_capabilities.hpp"
 #include "vk/one_time_commands.hpp"
+#include "vk/queue_role.hpp"
 #include "vk/shadow_tracer.hpp"
 #include "vk/vulkan_hpp.hpp"
 
@@ -38,17 +42,18 @@ class VulkanDevice {
   VulkanDevice& operator=(const VulkanDevice&) = delete;
 
   const ::vk::raii::Device& device() const { return device_; }
-  // The queue, for what needs it besides submissions; submit to it with submit().
+  // The frames' queue, for what needs it besides submissions; submit to it with submit().
   const ::vk::raii::Queue& queue() const { return queue_; }
-  // vkQueueSubmit under the queue's lock: the queue is shared by threads.
-  void submit(const ::vk::SubmitInfo& info, ::vk::Fence fence) const;
+  // vkQueueSubmit under the queue's lock: the queues are shared by threads.
+  void submit(const ::vk::SubmitInfo& info, ::vk::Fence fence,
+              QueueRole role = QueueRole::Frames) const;
   // One command buffer, waiting on `wait` at `waitStage` and signalling `signal` where given
   // (null semaphores: none), signalling `fence` when done.
   void submit(::vk::CommandBuffer commands, ::vk::Fence fence, ::vk::Semaphore wait = {},
-              ::vk::PipelineStageFlags waitStage = {}, ::vk::Semaphore signal = {}) const;
-  // Held by an acceleration-structure build from start to end: builds share the one-time
-  // command buffer's transient buffers (vk/one_time_commands.hpp), one build at a time.
-  std::unique_lock<std::mutex> buildLock() const { return std::unique_lock(buildMutex_); }
+              ::vk::PipelineStageFlags waitStage = {}, ::vk::Semaphore signal = {},
+              QueueRole role = QueueRole::Frames) const;
+  // Whether the builds made ahead have a queue of their own.
+  bool separateBuildQueue() const { return buildQueue_.has_value(); }
   std::uint32_t queueFamily() const { return queueFamily_; }
   const DeviceCapabilities& capabilities() const { return capabilities_; }
   const DeviceLimits& limits() const { return limits_; }
@@ -56,14 +61,17 @@ class VulkanDevice {
   // Device name, driver and API version, and the capabilities (createMs left to the tracer).
   const TracerInfo& info() const { return info_; }
 
-  // The reused command buffer of the builds and uploads that are waited for (submitAndWait).
-  OneTimeCommands& oneTimeCommands() const { return *oneTimeCommands_; }
+  // The reused command buffer of the builds and uploads that are waited for (submitAndWait), of
+  // the frames' queue or of the builds made ahead (each with its own transient buffers and lock).
+  OneTimeCommands& oneTimeCommands(QueueRole role = QueueRole::Frames) const {
+    return role == QueueRole::BuildsAhead ? *aheadCommands_ : *oneTimeCommands_;
+  }
 
   // Holds objects until the work submitted so far is done (vk/deferred_release.hpp).
   DeferredRelease& deferredRelease() const { return *deferredRelease_; }
 
-  // Waits for the queue to finish (under the queue's lock). Throws vk::SystemError when the
-  // device is lost.
+  // Waits for the queues to finish (under their locks). Throws vk::SystemError when the device
+  // is lost.
   void waitIdle() const;
   // The same for destructors, so it throws nothing (a lost device has nothing left to wait for).
   void waitIdleNoThrow() const noexcept;
@@ -77,13 +85,15 @@ class VulkanDevice {
   std::uint32_t queueFamily_;
   ::vk::raii::Device device_;
   ::vk::raii::Queue queue_;
+  std::optional<::vk::raii::Queue> buildQueue_;  // the family's second queue, where it has one
   DeviceLimits limits_;
   ::vk::PhysicalDeviceMemoryProperties memory_;
   TracerInfo info_;
   mutable std::mutex queueMutex_;
-  mutable std::mutex buildMutex_;
+  mutable std::mutex buildQueueMutex_;
   // Declared after device_: destroyed before it.
   std::unique_ptr<OneTimeCommands> oneTimeCommands_;
+  std::unique_ptr<OneTimeCommands> aheadCommands_;
   std::unique_ptr<DeferredRelease> deferredRelease_;
 };
 

@@ -100,7 +100,10 @@ class VulkanShadowTracer final : public ShadowTracer {
   SceneBuilder sceneBuilder() const override {
     return [device = device_](const Scene& scene) -> std::unique_ptr<TraceScene> {
       return translateVulkanErrors("buildScene", [&] {
-        std::unique_ptr<AccelerationScene> built = AccelerationScene::build(device, scene);
+        // On the builds' own queue: waiting here waits for this build, not for the frames'
+        // traces queued before it.
+        std::unique_ptr<AccelerationScene> built =
+            AccelerationScene::build(device, scene, QueueRole::BuildsAhead);
         built->buildGpuMs();  // waits here, on the caller's thread, not on the render thread
         return built;
       });
