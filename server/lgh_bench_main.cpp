@@ -14,6 +14,7 @@
 
 #include "bench/bench_command.hpp"
 #include "cli_common.hpp"
+#include "allocator_tuning.hpp"
 #include "crash_report.hpp"
 #include "lgh/error.hpp"
 #include "lgh/scene_worker.hpp"
@@ -21,6 +22,7 @@
 // A function-try-block: set-up errors (CLI, logging) end in a message, never in terminate().
 int main(int argc, char** argv) try {
   lgh::installCrashReport("lgh-bench");
+  lgh::keepFreedMemoryForReuse();
   if (argc == 2 && std::string_view(argv[1]) == lgh::bench::kSceneWorkerFlag) {
     return lgh::runSceneParserWorker(lgh::kSceneWorkerFd);
   }

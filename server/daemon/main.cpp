@@ -15,6 +15,7 @@
 
 #include "benchmark_runner.hpp"
 #include "config.hpp"
+#include "allocator_tuning.hpp"
 #include "crash_report.hpp"
 #include "daemon_context.hpp"
 #include "lgh/scene_worker.hpp"
@@ -135,6 +136,7 @@ int serve(const DaemonConfig& config) {
 
 int main(int argc, char** argv) {
   lgh::installCrashReport("lghd");
+  lgh::keepFreedMemoryForReuse();  // the scene parser worker too: it is this binary
   if (argc == 2 && std::string_view(argv[1]) == lghd::kProbeVulkanFlag) {
     return lghd::printVulkanProbe();
   }

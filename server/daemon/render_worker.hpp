@@ -117,7 +117,7 @@ class RenderWorker {
   // renders.
   using LookAhead = std::vector<std::shared_ptr<const RenderTicket>>;
   LookAhead nextTickets(const JobPiece& piece, std::size_t position, std::size_t count);
-  void prefetch(const LookAhead& next);
+  void prefetch(const std::shared_ptr<const RenderTicket>& current, const LookAhead& next);
 
   // --- Frames in flight (render thread, except encode()) ---
   struct FrameInFlight {

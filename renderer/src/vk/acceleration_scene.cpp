@@ -82,7 +82,13 @@ std::pair<BottomLevels, AccelerationStructure> buildTogether(
 }  // namespace
 
 std::unique_ptr<AccelerationScene> AccelerationScene::build(
-    std::shared_ptr<const VulkanDevice> device, const Scene& scene, QueueRole role) {
+    std::shared_ptr<const VulkanDevice> device, const Scene& scene) {
+  OneTimeCommands& frames = device->oneTimeCommands();
+  return build(std::move(device), scene, frames);
+}
+
+std::unique_ptr<AccelerationScene> AccelerationScene::build(
+    std::shared_ptr<const VulkanDevice> device, const Scene& scene, OneTimeCommands& oneTime) {
   // Where the wall time goes (the log line): packing, the turn (waiting for another thread's
   // build and the previous build's GPU work), the geometry's buffers, the rest of the
   // allocations and recording, and the submission (waited for only on the compacted path).
@@ -90,9 +96,8 @@ std::unique_ptr<AccelerationScene> AccelerationScene::build(
   // Packing is the CPU's alone: prefetch threads pack side by side.
   const PackedGeometry geometry = packGeometry(scene);
   const double packMs = wallClock.elapsedMs();
-  // Builds of one queue role share its transient buffers: one at a time (the render thread's and
-  // a prefetch thread's side by side).
-  OneTimeCommands& oneTime = device->oneTimeCommands(role);
+  // Builds with the same one-time commands share their transient buffers: one at a time (the
+  // render thread's and the prefetch threads' side by side).
   const std::unique_lock<std::mutex> oneBuild = oneTime.buildLock();
   // The previous build may still read the transient buffers that this one fills.
   oneTime.retire(*device);
@@ -111,7 +116,7 @@ std::unique_ptr<AccelerationScene> AccelerationScene::build(
   std::unique_ptr<AccelerationScene> result(new AccelerationScene(
       std::move(device), std::move(built.first.structures), std::move(built.second)));
   result->buildGpuMs_ = std::move(buildGpuMs);
-  result->role_ = role;
+  result->oneTime_ = &oneTime;
   result->triangleCount_ = geometry.triangleCount;
   const double wallMs = wallClock.elapsedMs();
   spdlog::info(
@@ -131,8 +136,8 @@ std::unique_ptr<AccelerationScene> AccelerationScene::build(
 }
 
 std::function<double()> AccelerationScene::buildGpuMsReader() const {
-  return [device = device_, gpuMs = buildGpuMs_, role = role_] {
-    if (*gpuMs < 0.0) device->oneTimeCommands(role).retire(*device);
+  return [device = device_, gpuMs = buildGpuMs_, oneTime = oneTime_] {
+    if (*gpuMs < 0.0) oneTime->retire(*device);
     return std::max(*gpuMs, 0.0);
   };
 }

@@ -8,20 +8,22 @@
 #include <vector>
 
 #include "vk/acceleration_structure.hpp"
-#include "vk/queue_role.hpp"
 #include "vk/shadow_tracer.hpp"
 
 namespace lgh::vk {
 
+class OneTimeCommands;
 class VulkanDevice;
 
 class AccelerationScene final : public TraceScene {
  public:
   // Throws vk::SystemError on a failing call, lgh::Error(TooLarge) past 2^32 vertices or indices.
-  // `role`: the queue (and one-time commands) the build is submitted with.
+  // Built with the frames' one-time commands (VulkanDevice::oneTimeCommands), or with `oneTime`
+  // (one of the builds made ahead, held until the build's GPU work is waited for).
   static std::unique_ptr<AccelerationScene> build(std::shared_ptr<const VulkanDevice> device,
-                                                  const Scene& scene,
-                                                  QueueRole role = QueueRole::Frames);
+                                                  const Scene& scene);
+  static std::unique_ptr<AccelerationScene> build(std::shared_ptr<const VulkanDevice> device,
+                                                  const Scene& scene, OneTimeCommands& oneTime);
   // Hands the structures to the device's deferred release: a trace in flight may still read them.
   ~AccelerationScene() override;
   AccelerationScene(const AccelerationScene&) = delete;
@@ -46,7 +48,7 @@ class AccelerationScene final : public TraceScene {
   // The build's GPU ms, written when its submission is retired; < 0 until then.
   std::shared_ptr<double> buildGpuMs_ = std::make_shared<double>(-1.0);
   std::size_t triangleCount_ = 0;
-  QueueRole role_ = QueueRole::Frames;  // where its build was submitted
+  OneTimeCommands* oneTime_ = nullptr;  // what its build was submitted with
 };
 
 }  // namespace lgh::vk

@@ -114,10 +114,29 @@ VulkanDevice::VulkanDevice(::vk::raii::Instance instance, ::vk::raii::PhysicalDe
       memory_(physical_.getMemoryProperties()),
       info_(describe(physical_, capabilities_)),
       oneTimeCommands_(std::make_unique<OneTimeCommands>(*this, QueueRole::Frames)),
-      aheadCommands_(std::make_unique<OneTimeCommands>(*this, QueueRole::BuildsAhead)),
       deferredRelease_(std::make_unique<DeferredRelease>(*this)) {
+  for (std::size_t i = 0; i < kAheadBuilders; ++i) {
+    aheadCommands_.push_back(std::make_unique<OneTimeCommands>(*this, QueueRole::BuildsAhead));
+    idleAheadCommands_.push_back(aheadCommands_.back().get());
+  }
   spdlog::info("vulkan: builds made ahead go to {}",
                buildQueue_ ? "a queue of their own" : "the frames' queue (the family has one)");
+}
+
+VulkanDevice::AheadLease VulkanDevice::leaseAheadCommands() const {
+  std::unique_lock lock(aheadMutex_);
+  aheadReturned_.wait(lock, [&] { return !idleAheadCommands_.empty(); });
+  OneTimeCommands* commands = idleAheadCommands_.back();
+  idleAheadCommands_.pop_back();
+  return {*this, *commands};
+}
+
+VulkanDevice::AheadLease::~AheadLease() {
+  {
+    const std::lock_guard lock(device_->aheadMutex_);
+    device_->idleAheadCommands_.push_back(commands_);
+  }
+  device_->aheadReturned_.notify_one();
 }
 
 void VulkanDevice::submit(const ::vk::SubmitInfo& info, ::vk::Fence fence, QueueRole role) const {

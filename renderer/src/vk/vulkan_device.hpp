@@ -8,10 +8,12 @@
 // has a second one (QueueRole).
 #pragma once
 
+#include <condition_variable>
 #include <cstdint>
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <vector>
 
 #include "vk/deferred_release.hpp"
 #include "vk/device_capabilities.hpp"
@@ -61,11 +63,30 @@ class VulkanDevice {
   // Device name, driver and API version, and the capabilities (createMs left to the tracer).
   const TracerInfo& info() const { return info_; }
 
-  // The reused command buffer of the builds and uploads that are waited for (submitAndWait), of
-  // the frames' queue or of the builds made ahead (each with its own transient buffers and lock).
-  OneTimeCommands& oneTimeCommands(QueueRole role = QueueRole::Frames) const {
-    return role == QueueRole::BuildsAhead ? *aheadCommands_ : *oneTimeCommands_;
-  }
+  // The reused command buffer of the frames' queue: the render thread's builds, and the uploads
+  // that are waited for (submitAndWait).
+  OneTimeCommands& oneTimeCommands() const { return *oneTimeCommands_; }
+
+  // One of the one-time commands of the builds made ahead (QueueRole::BuildsAhead), held from the
+  // build's start to the wait for its GPU work: up to kAheadBuilders builds run side by side, each
+  // with its own command buffer, fence and transient buffers (one set made them wait for one
+  // another, a fence round trip each, 2-15 ms turns on the H200 machine).
+  static constexpr std::size_t kAheadBuilders = 4;
+  class AheadLease {
+   public:
+    AheadLease(const VulkanDevice& device, OneTimeCommands& commands)
+        : device_(&device), commands_(&commands) {}
+    ~AheadLease();
+    AheadLease(const AheadLease&) = delete;
+    AheadLease& operator=(const AheadLease&) = delete;
+    OneTimeCommands& commands() const { return *commands_; }
+
+   private:
+    const VulkanDevice* device_;
+    OneTimeCommands* commands_;
+  };
+  // Waits while all of them are held.
+  AheadLease leaseAheadCommands() const;
 
   // Holds objects until the work submitted so far is done (vk/deferred_release.hpp).
   DeferredRelease& deferredRelease() const { return *deferredRelease_; }
@@ -93,7 +114,10 @@ class VulkanDevice {
   mutable std::mutex buildQueueMutex_;
   // Declared after device_: destroyed before it.
   std::unique_ptr<OneTimeCommands> oneTimeCommands_;
-  std::unique_ptr<OneTimeCommands> aheadCommands_;
+  std::vector<std::unique_ptr<OneTimeCommands>> aheadCommands_;
+  mutable std::mutex aheadMutex_;
+  mutable std::condition_variable aheadReturned_;
+  mutable std::vector<OneTimeCommands*> idleAheadCommands_;
   std::unique_ptr<DeferredRelease> deferredRelease_;
 };
 

@@ -101,9 +101,11 @@ class VulkanShadowTracer final : public ShadowTracer {
     return [device = device_](const Scene& scene) -> std::unique_ptr<TraceScene> {
       return translateVulkanErrors("buildScene", [&] {
         // On the builds' own queue: waiting here waits for this build, not for the frames'
-        // traces queued before it.
+        // traces queued before it. Held until then, so that the next build ahead with these
+        // commands does not wait for this one.
+        const VulkanDevice::AheadLease lease = device->leaseAheadCommands();
         std::unique_ptr<AccelerationScene> built =
-            AccelerationScene::build(device, scene, QueueRole::BuildsAhead);
+            AccelerationScene::build(device, scene, lease.commands());
         built->buildGpuMs();  // waits here, on the caller's thread, not on the render thread
         return built;
       });
