@@ -119,7 +119,8 @@ namespace {
 // Built-in scenes are made here; assets are parsed by the scene parser worker when there is one
 // (untrusted bytes never parsed in this process), else here.
 Scene loadScene(const RendererOptions& rendererOptions, worker::SceneWorkerPool* parsers,
-                const SceneSource& source, const SceneLoadOptions& options) {
+                const SceneSource& source, const SceneLoadOptions& options,
+                std::optional<worker::SceneWorkerPool::Turn> turn) {
   if (source.kind == SceneSource::Kind::Builtin) {
     return source.builtin == BuiltinScene::Atrium ? makeAtriumScene() : makeDemoScene();
   }
@@ -128,7 +129,8 @@ Scene loadScene(const RendererOptions& rendererOptions, worker::SceneWorkerPool*
   limits.maxTextureSize = rendererOptions.maxTextureSize;
   limits.maxTextureBytes = rendererOptions.maxTextureBytes;
   if (parsers != nullptr) {
-    return parsers->load({source, rendererOptions.assetRoot, limits, options});
+    const worker::LoadJob job{source, rendererOptions.assetRoot, limits, options};
+    return turn ? parsers->load(job, std::move(*turn)) : parsers->load(job);
   }
   return loadSceneSource(source, rendererOptions.assetRoot, limits, options);
 }
@@ -151,10 +153,10 @@ TraceSceneSlot SceneCache::buildTraceAhead(const TraceBuilder& build, const Scen
 
 SceneCache::Parsed SceneCache::parse(const RendererOptions& rendererOptions,
                                      worker::SceneWorkerPool* parsers, const SceneSource& source,
-                                     const SceneLoadOptions& options) {
+                                     const SceneLoadOptions& options, ParserTurn turn) {
   const Stopwatch timer;
   Parsed parsed;
-  parsed.scene = loadScene(rendererOptions, parsers, source, options);
+  parsed.scene = loadScene(rendererOptions, parsers, source, options, std::move(turn));
   parsed.loadMs = timer.elapsedMs();
   return parsed;
 }
@@ -235,9 +237,13 @@ void SceneCache::startPrefetch(const std::string& key, std::shared_ptr<const Sce
     if (!prefetchThreads_) {
       prefetchThreads_ = std::make_unique<TaskPool>(static_cast<int>(maxPrefetches()));
     }
+    // The parsers serve it in hint order, whenever its thread gets to them.
+    ParserTurn turn;
+    if (parsers_) turn.emplace(parsers_->reserveTurn());
     auto parsing = std::make_shared<std::packaged_task<Parsed()>>(
-        [rendererOptions = options_, parsers = parsers_.get(), source, options, buildTrace] {
-          Parsed parsed = parse(rendererOptions, parsers, *source, options);
+        [rendererOptions = options_, parsers = parsers_.get(), source, options, buildTrace,
+         turn = std::move(turn)]() mutable {
+          Parsed parsed = parse(rendererOptions, parsers, *source, options, std::move(turn));
           if (buildTrace) {
             const Stopwatch build;
             parsed.trace = buildTraceAhead(buildTrace, parsed.scene);

@@ -22,13 +22,10 @@
 #include "scene/gltf/gltf_loader.hpp"
 #include "scene/gpu_scene.hpp"
 #include "scene/scene.hpp"
+#include "scene/worker/scene_worker_pool.hpp"
 #include "vk/shadow_tracer.hpp"
 
 namespace lgh {
-
-namespace worker {
-class SceneWorkerPool;
-}
 
 // The acceleration structures of a cached scene, built by the first shadowed frame that draws it
 // and kept while the tracer that built them lives (`epoch`: ShadowDevice::epoch()).
@@ -114,9 +111,12 @@ class SceneCache {
   };
   static constexpr std::size_t kMaxTrianglesBuiltAhead = 250'000;
   static TraceSceneSlot buildTraceAhead(const TraceBuilder& build, const Scene& scene);
-  // In the scene parser worker when there is one (untrusted bytes never parsed here).
+  // In the scene parser worker when there is one (untrusted bytes never parsed here), in its
+  // turn: `turn`, taken when the scene was hinted, or one taken now.
+  using ParserTurn = std::optional<worker::SceneWorkerPool::Turn>;
   static Parsed parse(const RendererOptions& rendererOptions, worker::SceneWorkerPool* parsers,
-                      const SceneSource& source, const SceneLoadOptions& options);
+                      const SceneSource& source, const SceneLoadOptions& options,
+                      ParserTurn turn = std::nullopt);
   std::string sourceKey(const SceneSource& source) const;
   // An asset path's key: resolved inside the asset root and stat'ed (some twenty system calls),
   // then reused for kAssetKeyLifetime: the hint and the draw of one thumbnail, and the repeats of

@@ -12,33 +12,63 @@ SceneWorkerPool::SceneWorkerPool(SceneWorkerOptions options) : options_(std::mov
 
 SceneWorkerPool::~SceneWorkerPool() = default;
 
-SceneWorker& SceneWorkerPool::acquire() {
-  std::unique_lock lock(mutex_);
-  if (idle_.empty() && workers_.size() + starting_ < maxProcesses()) {
-    // Its start-up (about 0.2 s) happens outside the lock, so that the others stay usable.
-    ++starting_;
-    lock.unlock();
-    std::unique_ptr<SceneWorker> started;
-    try {
-      started = std::make_unique<SceneWorker>(options_);
-    } catch (...) {
-      lock.lock();
-      --starting_;
-      throw;
+SceneWorkerPool::Turn SceneWorkerPool::reserveTurn() {
+  const std::lock_guard lock(mutex_);
+  return {this, nextTicket_++};
+}
+
+void SceneWorkerPool::advance() {
+  ++serving_;
+  while (dropped_.erase(serving_) > 0) ++serving_;
+}
+
+void SceneWorkerPool::drop(std::uint64_t number) {
+  {
+    const std::lock_guard lock(mutex_);
+    if (number == serving_) {
+      advance();
+    } else {
+      dropped_.insert(number);
     }
+  }
+  freed_.notify_all();
+}
+
+SceneWorker& SceneWorkerPool::acquire(Turn turn) {
+  const std::uint64_t number = turn.number_;
+  turn.pool_ = nullptr;  // used here, not dropped
+  std::unique_lock lock(mutex_);
+  freed_.wait(lock, [&] {
+    return number == serving_ &&
+           (!idle_.empty() || workers_.size() + starting_ < maxProcesses());
+  });
+  advance();
+  if (!idle_.empty()) {
+    SceneWorker* worker = idle_.back();
+    idle_.pop_back();
+    lock.unlock();
+    freed_.notify_all();  // the next turn may find another idle worker
+    return *worker;
+  }
+  // Every worker is busy and there is room for one more: its start-up (about 0.2 s) happens
+  // outside the lock, so that the others stay usable and the next turns go on.
+  ++starting_;
+  lock.unlock();
+  freed_.notify_all();
+  std::unique_ptr<SceneWorker> started;
+  try {
+    started = std::make_unique<SceneWorker>(options_);
+  } catch (...) {
     lock.lock();
     --starting_;
-    workers_.push_back(std::move(started));
-    return *workers_.back();
+    lock.unlock();
+    freed_.notify_all();
+    throw;
   }
-  const std::uint64_t turn = nextTicket_++;
-  freed_.wait(lock, [&] { return !idle_.empty() && turn == serving_; });
-  ++serving_;
-  SceneWorker* worker = idle_.back();
-  idle_.pop_back();
-  lock.unlock();
-  freed_.notify_all();  // the next turn may find another idle worker
-  return *worker;
+  lock.lock();
+  --starting_;
+  workers_.push_back(std::move(started));
+  return *workers_.back();
 }
 
 void SceneWorkerPool::release(SceneWorker& worker) {
@@ -49,8 +79,10 @@ void SceneWorkerPool::release(SceneWorker& worker) {
   freed_.notify_all();  // the waiter whose turn it is
 }
 
-Scene SceneWorkerPool::load(const LoadJob& job) {
-  SceneWorker& worker = acquire();
+Scene SceneWorkerPool::load(const LoadJob& job) { return load(job, reserveTurn()); }
+
+Scene SceneWorkerPool::load(const LoadJob& job, Turn turn) {
+  SceneWorker& worker = acquire(std::move(turn));
   try {
     Scene scene = worker.load(job);
     release(worker);
