@@ -22,8 +22,8 @@
 // A function-try-block: set-up errors (CLI, logging) end in a message, never in terminate().
 int main(int argc, char** argv) try {
   lgh::installCrashReport("lgh-bench");
-  lgh::keepFreedMemoryForReuse();
   if (argc == 2 && std::string_view(argv[1]) == lgh::bench::kSceneWorkerFlag) {
+    lgh::keepFreedMemoryForReuse();
     return lgh::runSceneParserWorker(lgh::kSceneWorkerFd);
   }
   CLI::App app{"lgh-bench: benchmarks of the lghd renderer (GPU timer queries, medians)"};

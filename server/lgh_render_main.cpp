@@ -19,7 +19,6 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
-#include "allocator_tuning.hpp"
 #include "crash_report.hpp"
 #include "lgh/error.hpp"
 #include "lgh/renderer.hpp"
@@ -253,7 +252,6 @@ int run(const Flags& flags) {
 // A function-try-block: set-up errors (CLI, logging) end in a message, never in terminate().
 int main(int argc, char** argv) try {
   lgh::installCrashReport("lgh-render");
-  lgh::keepFreedMemoryForReuse();
   CLI::App app{
       "lgh-render: render one lghd request (JSON) to a PNG or EXR file, or a thumbnail of a glTF "
       "model:\n  lgh-render model.glb -o model.png --size 256 --view iso --transparent"};

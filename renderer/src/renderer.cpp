@@ -216,8 +216,10 @@ std::uint64_t Renderer::Impl::submit(const RenderRequest& request) {
   // Parts of "submit" spent waiting: for a frame in flight to finish (--frames-in-flight), and
   // for the scene's parse (a prefetch not done yet, or a parse of its own) besides its upload.
   report.timings.add("slot wait", TimingRow::Clock::Cpu, slotWaitMs);
-  report.timings.add("scene wait", TimingRow::Clock::Cpu,
-                     std::max(0.0, sceneMs - (lookup.hit ? 0.0 : lookup.uploadMs)));
+  report.timings.add(
+      "scene wait", TimingRow::Clock::Cpu,
+      std::max(0.0, sceneMs - (lookup.hit ? 0.0 : lookup.uploadMs + lookup.releaseMs)));
+  if (!lookup.hit) report.timings.add("scene release", TimingRow::Clock::Cpu, lookup.releaseMs);
   report.warnings = lookup.entry->scene.warnings;
 
   const OutputPixels pixels = outputPixelsFor(request.output);

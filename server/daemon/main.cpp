@@ -136,7 +136,6 @@ int serve(const DaemonConfig& config) {
 
 int main(int argc, char** argv) {
   lgh::installCrashReport("lghd");
-  lgh::keepFreedMemoryForReuse();  // the scene parser worker too: it is this binary
   if (argc == 2 && std::string_view(argv[1]) == lghd::kProbeVulkanFlag) {
     return lghd::printVulkanProbe();
   }
@@ -144,6 +143,7 @@ int main(int argc, char** argv) {
     return lghd::runBenchmarkChild(argv[2], argv[3]);
   }
   if (argc >= 2 && argc <= 3 && std::string_view(argv[1]) == lghd::kSceneWorkerFlag) {
+    lgh::keepFreedMemoryForReuse();
     lghd::logging::setUp("warn", "json");
     return lgh::runSceneParserWorker(lgh::kSceneWorkerFd, argc == 3 ? argv[2] : "");
   }

@@ -312,7 +312,9 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
   lookup.uploadMs = uploadTimer.elapsedMs();
   lookup.entry = entry;
   slots_.push_front({key, entry});
+  const Stopwatch release;
   evictOverBudget();
+  lookup.releaseMs = release.elapsedMs();
   // Kept only as the most recent scene (over the budget: with the cache off, always), the scene
   // is gone before its later hint is drawn: that one gets a parse of its own.
   if (next && stats().bytes > options_.sceneCacheBytes) {

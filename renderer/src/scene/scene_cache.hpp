@@ -69,6 +69,7 @@ class SceneCache {
     bool hit = false;
     double loadMs = 0.0;  // parsing, here or on a prefetch thread
     double uploadMs = 0.0;
+    double releaseMs = 0.0;   // freeing the scenes this miss evicted (GL, Vulkan and CPU memory)
     bool prefetched = false;  // parsed by prefetch() ahead of this get()
   };
   // Loads on a miss; throws lgh::Error for bad assets (nothing is cached then). The options (pose,
