@@ -12,9 +12,9 @@
 #include <string_view>
 #include <vector>
 
+#include "allocator_tuning.hpp"
 #include "bench/bench_command.hpp"
 #include "cli_common.hpp"
-#include "allocator_tuning.hpp"
 #include "crash_report.hpp"
 #include "lgh/error.hpp"
 #include "lgh/scene_worker.hpp"

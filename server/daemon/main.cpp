@@ -13,9 +13,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include "allocator_tuning.hpp"
 #include "benchmark_runner.hpp"
 #include "config.hpp"
-#include "allocator_tuning.hpp"
 #include "crash_report.hpp"
 #include "daemon_context.hpp"
 #include "lgh/scene_worker.hpp"

@@ -79,9 +79,7 @@ class ScenePrefetchHints : public ::testing::Test {
     options_.assetRoot = lgh::test::assimpGltfDir();
     context_ = lgh::GlContext::create(options_);
   }
-  static lgh::SceneSource asset(const std::string& path) {
-    return thumbnailOf(path).scene;
-  }
+  static lgh::SceneSource asset(const std::string& path) { return thumbnailOf(path).scene; }
   lgh::RendererOptions options_;
   std::unique_ptr<lgh::GlContext> context_;
 };

@@ -253,8 +253,7 @@ void SceneCache::startPrefetch(const std::string& key, std::shared_ptr<const Sce
         });
     // After the other hints of the key: get() takes them in hint order.
     entry = prefetches_.emplace(key, Prefetch{parsing->get_future(), std::move(source), options,
-                                              std::move(buildTrace), hint,
-                                              std::move(laterHints)});
+                                              std::move(buildTrace), hint, std::move(laterHints)});
     prefetchThreads_->submit([parsing] { (*parsing)(); });  // its exceptions go to the future
   } catch (const std::exception& error) {  // no thread (std::system_error), no memory
     spdlog::warn("scene cache: no thread for a prefetch ({}); the scene is parsed when drawn",

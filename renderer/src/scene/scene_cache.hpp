@@ -151,8 +151,8 @@ class SceneCache {
     std::deque<std::uint64_t> laterHints;
   };
   void startPrefetch(const std::string& key, std::shared_ptr<const SceneSource> source,
-                     const SceneLoadOptions& options, TraceBuilder buildTrace,
-                     std::uint64_t hint, std::deque<std::uint64_t> laterHints);
+                     const SceneLoadOptions& options, TraceBuilder buildTrace, std::uint64_t hint,
+                     std::deque<std::uint64_t> laterHints);
   // Finished parses whose draw has passed (a cancelled request's, a failed ticket's): their
   // hints are more than twice the look-ahead old.
   void dropStalePrefetches();

@@ -32,10 +32,10 @@ class GeometryUpload {
                  const PackedGeometry& geometry)
       : indexOffset_(geometry.positions.size() * kPositionBytes),
         bytes_(indexOffset_ + geometry.indices.size() * kIndexBytes),
-        staging_(&oneTime.transientBuffers().get(
-            device, {.size = bytes_,
-                     .usage = ::vk::BufferUsageFlagBits::eTransferSrc,
-                     .memory = MemoryKind::HostVisible})),
+        staging_(&oneTime.transientBuffers().get(device,
+                                                 {.size = bytes_,
+                                                  .usage = ::vk::BufferUsageFlagBits::eTransferSrc,
+                                                  .memory = MemoryKind::HostVisible})),
         buffer_(&oneTime.transientBuffers().get(
             device,
             {.size = bytes_,
@@ -262,8 +262,8 @@ BottomLevels BottomLevelBuilds::buildCompacted() {
             .handle();
   }
   OneTimeCommands& oneTime = state_->oneTime;
-  const DeviceBuffer& scratch = oneTime.transientBuffers().get(
-      device, accelerationScratch(device, state_->scratchBytes));
+  const DeviceBuffer& scratch =
+      oneTime.transientBuffers().get(device, accelerationScratch(device, state_->scratchBytes));
   const ::vk::raii::QueryPool sizeQueries(
       device.device(), ::vk::QueryPoolCreateInfo{
                            .queryType = ::vk::QueryType::eAccelerationStructureCompactedSizeKHR,

@@ -55,8 +55,8 @@ AccelerationStructure TopLevelBuild::build(
   const auto storage = std::make_shared<const DeviceBuffer>(
       device_, accelerationStorage(std::max<::vk::DeviceSize>(storageBytes(), 1)));
   AccelerationStructure structure = place(storage, 0);
-  const DeviceBuffer& scratch = oneTime_.transientBuffers().get(
-      device_, accelerationScratch(device_, scratchBytes()));
+  const DeviceBuffer& scratch =
+      oneTime_.transientBuffers().get(device_, accelerationScratch(device_, scratchBytes()));
   const TimestampQueries& timestamps = oneTime_.timestamps();
   oneTime_.submitAndWait(device_, [&](const ::vk::raii::CommandBuffer& commands) {
     timestamps.begin(commands, 0);

@@ -39,8 +39,7 @@ SceneWorker& SceneWorkerPool::acquire(Turn turn) {
   turn.pool_ = nullptr;  // used here, not dropped
   std::unique_lock lock(mutex_);
   freed_.wait(lock, [&] {
-    return number == serving_ &&
-           (!idle_.empty() || workers_.size() + starting_ < maxProcesses());
+    return number == serving_ && (!idle_.empty() || workers_.size() + starting_ < maxProcesses());
   });
   advance();
   if (!idle_.empty()) {

@@ -70,9 +70,9 @@ class SceneWorkerPool {
   std::condition_variable freed_;
   std::vector<std::unique_ptr<SceneWorker>> workers_;
   std::vector<SceneWorker*> idle_;
-  std::size_t starting_ = 0;      // workers being started outside the lock
-  std::uint64_t nextTicket_ = 0;  // the next turn's number
-  std::uint64_t serving_ = 0;     // the turn that gets the next idle worker (or starts one)
+  std::size_t starting_ = 0;         // workers being started outside the lock
+  std::uint64_t nextTicket_ = 0;     // the next turn's number
+  std::uint64_t serving_ = 0;        // the turn that gets the next idle worker (or starts one)
   std::set<std::uint64_t> dropped_;  // turns after serving_ dropped unused
 };
 
