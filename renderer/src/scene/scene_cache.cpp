@@ -332,25 +332,7 @@ void SceneCache::evictOverBudget() {
     const std::size_t bytes = slots_.back().entry->gpuBytes();
     spdlog::info("scene cache: evicting {} ({} bytes)", slots_.back().key, bytes);
     total -= bytes;
-    std::shared_ptr<CachedScene> evicted = std::move(slots_.back().entry);
     slots_.pop_back();
-    release(std::move(evicted));
-  }
-}
-
-void SceneCache::release(std::shared_ptr<CachedScene> entry) {
-  if (entry.use_count() != 1 || !prefetchThreads_) return;  // freed here, or by its last holder
-  // The GPU objects here, on the GL thread (the structures go to the device's deferred release),
-  // then the CPU data elsewhere.
-  entry->hitGeometry.reset();
-  entry->trace = {};
-  entry->gpu.reset();
-  auto scene = std::make_shared<Scene>(std::move(entry->scene));
-  entry.reset();
-  try {
-    prefetchThreads_->submit([scene = std::move(scene)]() mutable { scene.reset(); });
-  } catch (const std::exception&) {
-    // No thread for it (it was freed here as the lambda went).
   }
 }
 

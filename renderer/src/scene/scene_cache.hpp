@@ -132,11 +132,6 @@ class SceneCache {
   };
   mutable std::unordered_map<std::string, AssetKey> assetKeys_;
   void evictOverBudget();
-  // Frees an evicted scene that nothing else holds: its GL objects here, on the render thread, its
-  // CPU memory (vertices and decoded images, megabytes for a textured asset) on a prefetch thread.
-  // Freeing it all here (`scene release`) took 0.2 ms per cold thumbnail on the H200 machine, and
-  // 1.5 ms after ClearCoatTest.
-  void release(std::shared_ptr<CachedScene> entry);
   RendererOptions options_;
   std::unique_ptr<worker::SceneWorkerPool> parsers_;
   // A parse started by prefetch(); `hint`: its hint's number (prefetch() calls so far, the
