@@ -18,6 +18,9 @@ void addContextFlags(CLI::App& app, ContextFlags& flags) {
   app.add_flag("--require-gpu", flags.requireGpu,
                "fail instead of rendering on a software rasterizer");
   app.add_flag("--gl-debug", flags.glDebug, "create a KHR_debug context");
+  app.add_flag("--no-frame-overlap", flags.noFrameOverlap,
+               "issue each shadowed frame whole: GL waits for its shadow rays before it draws the "
+               "next frame (by default the next frame's G-buffer runs while Vulkan traces)");
   app.add_option("--asset-root", flags.assetRoot, "folder that scene asset paths resolve inside")
       ->capture_default_str();
   app.add_option("--log-level", flags.logLevel, "trace, debug, info, warn, error, off")
@@ -31,6 +34,7 @@ RendererOptions rendererOptions(const ContextFlags& flags) {
   options.gpuIndex = flags.gpu;
   options.requireGpu = flags.requireGpu;
   options.glDebug = flags.glDebug;
+  options.overlapShadowedFrames = !flags.noFrameOverlap;
   options.assetRoot = flags.assetRoot;
   return options;
 }

@@ -18,11 +18,13 @@ struct ContextFlags {
   int gpu = 0;
   bool requireGpu = false;
   bool glDebug = false;
+  bool noFrameOverlap = false;
   std::string assetRoot = ".";
   std::string logLevel = "warn";
 };
 
-// Adds --backend, --gpu, --require-gpu, --gl-debug, --asset-root, --log-level.
+// Adds --backend, --gpu, --require-gpu, --gl-debug, --no-frame-overlap, --asset-root,
+// --log-level.
 void addContextFlags(CLI::App& app, ContextFlags& flags);
 RendererOptions rendererOptions(const ContextFlags& flags);
 // Logs to stderr at the given level ("trace".."off").

@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "core/stopwatch.hpp"
+#include "lgh/error.hpp"
 #include "passes/brdf_features.hpp"
 #include "passes/lgh_lighting_common.hpp"
 #include "passes/light_buffer.hpp"
@@ -58,27 +59,85 @@ std::vector<LightDesc> frameLights(const RenderRequest& request, const Scene& sc
 }
 
 FramePipeline::FramePipeline(ShadowDevice* shadowDevice)
-    : shadows_(shadowDevice), gi_(shadowDevice) {}
+    : sets_{std::make_unique<FrameSet>(shadowDevice, 0),
+            std::make_unique<FrameSet>(shadowDevice, 1)},
+      targets_(sets_[0]->targets),
+      shadows_(sets_[0]->shadows),
+      gi_(shadowDevice) {}
 FramePipeline::~FramePipeline() = default;
+
+FramePipeline::FrameSet& FramePipeline::frameSet(int set) {
+  if (set < 0 || set >= kFrameSets) {
+    throw Error(ErrorCode::Internal, fmt::format("frame set {} of {}", set, kFrameSets));
+  }
+  return *sets_[static_cast<std::size_t>(set)];
+}
 
 void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached,
                          gl::GpuTimer& timer, FrameReport& report, OutputPixels pixels,
                          LghFrameProbe* probe) {
+  drawInto(*sets_[0], request, cached, timer, report, pixels, false, probe);
+}
+
+std::optional<RemainingPasses> FramePipeline::drawUntilShadows(const RenderRequest& request,
+                                                               const CachedScene& cached,
+                                                               gl::GpuTimer& timer,
+                                                               FrameReport& report,
+                                                               OutputPixels pixels, int set) {
+  std::optional<RemainingPasses> remaining =
+      drawInto(frameSet(set), request, cached, timer, report, pixels, true, nullptr);
+  if (remaining) remaining->set = set;
+  return remaining;
+}
+
+void FramePipeline::finishDraw(const RemainingPasses& remaining, gl::GpuTimer& timer) {
+  FrameSet& set = frameSet(remaining.set);
+  directLighting(set, remaining, timer);
+  {
+    gl::ScopedGpuPass pass(timer, "composite");
+    compositePass_.run(remaining.output, remaining.pixels, false, 0, set.targets);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glFlush();
+}
+
+void FramePipeline::directLighting(FrameSet& set, const RemainingPasses& remaining,
+                                   gl::GpuTimer& timer) {
+  set.shadows.awaitVisibility();
+  gl::ScopedGpuPass pass(timer, "direct lighting");
+  directLightingPass_.run(
+      {set.lightBuffer.id(), remaining.lightCount, set.shadows.layout(), set.shadows.visibility(),
+       remaining.ambient, remaining.brdf, remaining.emission},
+      remaining.camera, set.targets);
+}
+
+std::optional<RemainingPasses> FramePipeline::drawInto(FrameSet& set, const RenderRequest& request,
+                                                       const CachedScene& cached,
+                                                       gl::GpuTimer& timer, FrameReport& report,
+                                                       OutputPixels pixels, bool maySplit,
+                                                       LghFrameProbe* probe) {
   const Stopwatch setup;
   const OutputSettings& output = request.output;
-  const CameraMatrices camera =
-      computeCamera(request.camera, cached.scene, output.width, output.height);
+  RemainingPasses remaining;
+  remaining.camera = computeCamera(request.camera, cached.scene, output.width, output.height);
+  const CameraMatrices& camera = remaining.camera;
   const std::vector<LightDesc> lights = frameLights(request, cached.scene, camera, report.warnings);
   const LghSettings& lgh = request.settings.lgh;
   const ShadowSettings& shadowSettings = request.settings.shadows;
   // The scene's materials with the request's parameters (docs/MATERIALS.md), for this frame.
   const MaterialTable materials(cached.scene, request.materials);
-  targets_.resize(output.width, output.height);
-  uploadLights(lights, lightBuffer_);
-  const auto lightCount = static_cast<int>(lights.size());
+  FrameTargets& targets = set.targets;
+  targets.resize(output.width, output.height);
+  uploadLights(lights, set.lightBuffer);
+  remaining.lightCount = static_cast<int>(lights.size());
+  remaining.ambient = request.settings.ambient;
+  remaining.output = output;
+  remaining.pixels = pixels;
+  const int lightCount = remaining.lightCount;
   // The models and layers the G-buffer holds: what the lighting kernels are compiled for.
-  const BrdfFeatures brdf = brdfFeatures(materials, cached.gpu->drawItems());
-  const bool emission = surfacesEmit(materials, cached.gpu->drawItems());
+  remaining.brdf = brdfFeatures(materials, cached.gpu->drawItems());
+  remaining.emission = surfacesEmit(materials, cached.gpu->drawItems());
+  const BrdfFeatures& brdf = remaining.brdf;
   // The render thread's work before the first pass: part of "submit", beside the passes' cpu_ms.
   report.timings.add("frame setup", TimingRow::Clock::Cpu, setup.elapsedMs());
   {
@@ -86,65 +145,73 @@ void FramePipeline::draw(const RenderRequest& request, const CachedScene& cached
     gbufferPass_.run({.materials = &materials,
                       .camera = &camera,
                       .primitives = &request.settings.primitives,
-                      .lights = lightBuffer_.id(),
+                      .lights = set.lightBuffer.id(),
                       .lightCount = lightCount,
                       .depthPrepass = request.settings.depthPrepass,
                       .writeLayers = brdf.usesLayersTarget(),
-                      .writeEmissive = emission,
+                      .writeEmissive = remaining.emission,
                       .clearEveryTarget = probe != nullptr},
-                     *cached.gpu, targets_);
+                     *cached.gpu, targets);
   }
   LghFrameLighting::ShadowSamples samples;
   if (lgh.enabled) {
     if (!lghLighting_) lghLighting_ = std::make_unique<LghFrameLighting>();
     if (probe != nullptr) prepareProbe(request, cached, *probe);
-    const LghGiInputs gi{request.settings.gi,    lights, lightBuffer_.id(),
+    const LghGiInputs gi{request.settings.gi,    lights, set.lightBuffer.id(),
                          shadowSettings.tracing, gi_,    materials.materials()};
-    lghLighting_->run(lgh, cached, camera, brdf, targets_, timer, report, probe, &gi);
+    lghLighting_->run(lgh, cached, camera, brdf, targets, timer, report, probe, &gi);
     if (probe != nullptr) probe->visibility = nullptr;  // it refers to this frame's scene
     samples = lghLighting_->shadowSamples();
   }
-  shadows_.trace({shadowSettings, samplingSeed(lgh), lightBuffer_.id(), lightCount, samples.buffer,
-                  samples.count},
-                 cached, targets_, timer, report);
-  {
-    gl::ScopedGpuPass pass(timer, "direct lighting");
-    directLightingPass_.run({lightBuffer_.id(), lightCount, shadows_.layout(),
-                             shadows_.visibility(), request.settings.ambient, brdf, emission},
-                            camera, targets_);
-  }
-  const GLuint shadowRatio =
-      shadows_.filterLgh(shadowSettings.filterIterations, camera, targets_, timer);
-  if (probe != nullptr && lgh.enabled) finishProbe(shadowRatio, camera, *probe);
+  ShadowFrame& shadows = set.shadows;
+  shadows.trace({shadowSettings, samplingSeed(lgh), set.lightBuffer.id(), lightCount,
+                 samples.buffer, samples.count},
+                cached, targets, timer, report);
   const bool blends = ForwardBlendPass::needed(materials, *cached.gpu);
+  // Rows timed by Vulkan, the light paths' then the shadow rays', read when the frame is taken.
+  if (lghLighting_) lghLighting_->collectTimings(report);
+  shadows.collectTimings(report);
+  report.decide("lighting", lgh.enabled ? "direct+lgh" : "direct");
+  report.decide("lights", std::to_string(lights.size()));
+  reportScene(cached, report);
+  const bool split = maySplit && shadows.traced() && !lgh.enabled && !blends &&
+                     static_cast<long>(output.width) * output.height <= kMaxSplitPixels;
+  report.decide("frame_overlap", split ? "split" : "whole");
+  if (split) {
+    glFlush();  // the G-buffer and the rays' set-up start while the CPU goes on
+    return remaining;
+  }
+  directLighting(set, remaining, timer);
+  const GLuint shadowRatio =
+      shadows.filterLgh(shadowSettings.filterIterations, camera, targets, timer);
+  if (probe != nullptr && lgh.enabled) finishProbe(shadowRatio, camera, *probe);
   if (!blends) {
     gl::ScopedGpuPass pass(timer, "composite");
-    compositePass_.run(output, pixels, lgh.enabled, shadowRatio, targets_);
+    compositePass_.run(output, pixels, lgh.enabled, shadowRatio, targets);
   } else {
     // Blending happens in linear light: composite into the scene target, blend the surfaces over
     // it, then the display pass writes what is read back.
     {
       gl::ScopedGpuPass pass(timer, "composite");
-      compositePass_.runToScene(output, lgh.enabled, shadowRatio, targets_);
+      compositePass_.runToScene(output, lgh.enabled, shadowRatio, targets);
     }
     {
       gl::ScopedGpuPass pass(timer, "forward blend");
       const int blended = forwardBlendPass_.run(
-          {&materials, &camera, &request.settings.primitives, lightBuffer_.id(), lightCount,
+          {&materials, &camera, &request.settings.primitives, set.lightBuffer.id(), lightCount,
            request.settings.ambient, gbufferPass_.maxTessellationLevel()},
-          gbufferPass_.programs(), *cached.gpu, targets_);
+          gbufferPass_.programs(), *cached.gpu, targets);
       report.decide("blended_surfaces", std::to_string(blended));
     }
     gl::ScopedGpuPass pass(timer, "display");
-    displayPass_.run(output, pixels, targets_);
+    displayPass_.run(output, pixels, targets);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glFlush();  // the GPU starts on the frame while the CPU goes on
-  // Rows timed by Vulkan, the light paths' then the shadow rays', read when the frame is taken.
-  if (lghLighting_) lghLighting_->collectTimings(report);
-  shadows_.collectTimings(report);
-  report.decide("lighting", lgh.enabled ? "direct+lgh" : "direct");
-  report.decide("lights", std::to_string(lights.size()));
+  return std::nullopt;
+}
+
+void FramePipeline::reportScene(const CachedScene& cached, FrameReport& report) {
   report.decide("texture_memory", textureMemoryText(cached.gpu->textureMemory()));
   // What unset `sampling.anisotropy` gets, and where a request's value is capped.
   report.decide("texture_anisotropy", fmt::format("{:g}", cached.gpu->maxAnisotropy()));
@@ -238,9 +305,9 @@ void FramePipeline::finishProbe(GLuint shadowRatio, const CameraMatrices& camera
 }
 
 void FramePipeline::pack(OutputPixels pixels, FramePixels::Layout layout, GLuint packBuffer,
-                         gl::GpuTimer& timer) {
+                         gl::GpuTimer& timer, int set) {
   gl::ScopedGpuPass pass(timer, "readback");
-  pixelPackPass_.run(targets_, pixels, layout, packBuffer);
+  pixelPackPass_.run(frameSet(set).targets, pixels, layout, packBuffer);
 }
 
 void FramePipeline::render(const RenderRequest& request, const CachedScene& cached,

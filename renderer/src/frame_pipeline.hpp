@@ -4,13 +4,18 @@
 // rays (GL setup, Vulkan trace) -> direct lighting with visibility -> [LGH shadow ratio +
 // filter] -> composite (display codes for PNG, linear light for EXR) -> pack into a read-back
 // buffer; with blended surfaces: composite in linear light -> forward pass of blended surfaces ->
-// display pass -> pack. Owns the passes and the frame targets; the renderer owns the context, the
-// scene cache, the read-back buffers and the frames in flight. The LGH part
+// display pass -> pack. Owns the passes and two frame sets (targets, light buffer, shadow-ray
+// lane): a shadowed frame's draw may stop after handing its rays to Vulkan (drawUntilShadows), so
+// that the next frame's G-buffer runs on GL while Vulkan traces (docs/SHADOWS.md, "Overlapped
+// frames"). The renderer owns the context, the scene cache, the read-back buffers and the frames
+// in flight. The LGH part
 // (passes/lgh_frame_lighting.hpp) is created on the first frame that enables it, so frames without
 // it run exactly as before.
 #pragma once
 
+#include <array>
 #include <memory>
+#include <optional>
 
 #include "frame_report.hpp"
 #include "gi/gi_tracing.hpp"
@@ -28,8 +33,23 @@
 
 namespace lgh {
 
+// The passes left of a frame that drawUntilShadows() stopped after its rays' hand-over: the
+// direct lighting and the composite, which read nothing of the scene.
+struct RemainingPasses {
+  int set = 0;  // the frame set its first half drew into
+  CameraMatrices camera;
+  int lightCount = 0;
+  float ambient = 0.0F;
+  BrdfFeatures brdf;
+  bool emission = false;
+  OutputSettings output;
+  OutputPixels pixels = OutputPixels::Display8;
+};
+
 class FramePipeline {
  public:
+  static constexpr int kFrameSets = 2;
+
   // `shadowDevice`: where shadow rays are traced (nullptr: never; frames say so in a warning).
   explicit FramePipeline(ShadowDevice* shadowDevice = nullptr);
   ~FramePipeline();
@@ -42,10 +62,23 @@ class FramePipeline {
   // tracer's rows are written by report.lateRows when the frame is taken.
   void draw(const RenderRequest& request, const CachedScene& scene, gl::GpuTimer& timer,
             FrameReport& report, OutputPixels pixels, LghFrameProbe* probe = nullptr);
-  // Issues the copy of the last frame's output into `packBuffer` as `layout`, timed as the GPU
+  // draw() into frame set `set`, stopping after the shadow rays' hand-over when what is left are
+  // the direct lighting and the composite (no LGH, no blended surfaces, rays traced, at most
+  // kMaxSplitPixels): those are returned, for finishDraw() after the next frame's first half.
+  // Otherwise the whole frame is issued and nullopt returned.
+  std::optional<RemainingPasses> drawUntilShadows(const RenderRequest& request,
+                                                  const CachedScene& scene, gl::GpuTimer& timer,
+                                                  FrameReport& report, OutputPixels pixels,
+                                                  int set);
+  void finishDraw(const RemainingPasses& remaining, gl::GpuTimer& timer);
+  // Frames larger than this are drawn whole: a second set of their targets costs more memory
+  // than the overlap saves time (their own passes keep the GPU busy).
+  static constexpr long kMaxSplitPixels = 1280L * 720L;
+
+  // Issues the copy of frame set `set`'s output into `packBuffer` as `layout`, timed as the GPU
   // pass "readback".
-  void pack(OutputPixels pixels, FramePixels::Layout layout, GLuint packBuffer,
-            gl::GpuTimer& timer);
+  void pack(OutputPixels pixels, FramePixels::Layout layout, GLuint packBuffer, gl::GpuTimer& timer,
+            int set = 0);
   // The size of the pack buffer pack() needs for `pixels`.
   static std::size_t packBufferBytes(const FramePixels& pixels) {
     return PixelPackPass::bufferBytes(pixels);
@@ -57,15 +90,30 @@ class FramePipeline {
               FrameReport& report, LghFrameProbe* probe = nullptr);
 
  private:
+  // One frame's targets, lights and shadow-ray lane.
+  struct FrameSet {
+    FrameSet(ShadowDevice* device, vk::RayLane lane) : shadows(device, lane) {}
+    FrameTargets targets;
+    gl::SizedBuffer lightBuffer;
+    ShadowFrame shadows;
+  };
+
+  std::optional<RemainingPasses> drawInto(FrameSet& set, const RenderRequest& request,
+                                          const CachedScene& scene, gl::GpuTimer& timer,
+                                          FrameReport& report, OutputPixels pixels, bool maySplit,
+                                          LghFrameProbe* probe);
+  void directLighting(FrameSet& set, const RemainingPasses& remaining, gl::GpuTimer& timer);
+  static void reportScene(const CachedScene& scene, FrameReport& report);
   // The probe's shadowed reference traces its rays here; its outputs that need the shadows.
   void prepareProbe(const RenderRequest& request, const CachedScene& scene, LghFrameProbe& probe);
   void finishProbe(GLuint shadowRatio, const CameraMatrices& camera, LghFrameProbe& probe) const;
+  FrameSet& frameSet(int set);
 
  private:
-  FrameTargets targets_;
-  gl::SizedBuffer lightBuffer_;
+  std::array<std::unique_ptr<FrameSet>, kFrameSets> sets_;
+  FrameTargets& targets_;  // set 0's: whole frames, probes
+  ShadowFrame& shadows_;   // set 0's
   GBufferPass gbufferPass_;
-  ShadowFrame shadows_;
   GiTracing gi_;
   DirectLightingPass directLightingPass_;
   CompositePass compositePass_;

@@ -42,6 +42,10 @@ struct PendingFrame {
   gl::GpuTimer timer;
   gl::Fence fence;
   FrameReport report;
+  OutputPixels outputPixels = OutputPixels::Display8;
+  // Set while the frame's draw stopped after its shadow rays' hand-over: the passes still to
+  // issue, after the next frame's first half (FramePipeline::drawUntilShadows). No fence yet.
+  std::optional<RemainingPasses> remaining;
   bool sceneCacheHit = false;
   Stopwatch::Clock::time_point submitted;                // when submit() returned
   std::optional<Stopwatch::Clock::time_point> readBack;  // when its fence was seen signalled
@@ -109,17 +113,36 @@ struct Renderer::Impl {
   }
   void waitFor(PendingFrame& frame) {
     if (frame.readBack) return;
+    if (frame.remaining) finishDeferred(frame);
     while (!frame.fence.wait(std::numeric_limits<std::uint64_t>::max())) {
     }
     frame.readBack = Stopwatch::Clock::now();
   }
   bool poll(PendingFrame& frame) {
     if (frame.readBack) return true;
+    if (frame.remaining) {
+      finishDeferred(frame);  // nothing else would issue it while no frame follows
+      return false;
+    }
     if (!frame.fence.wait(0)) return false;
     frame.readBack = Stopwatch::Clock::now();
     return true;
   }
+  PendingFrame* deferredFrame() {
+    const auto found = std::find_if(pending.begin(), pending.end(),
+                                    [](const PendingFrame& frame) { return frame.remaining; });
+    return found == pending.end() ? nullptr : &*found;
+  }
+  // Issues the copy of the frame's output into read-back memory and its fence.
+  void pack(PendingFrame& frame, int set) {
+    gl::ReadbackPool::Lease lease = readback.acquire(FramePipeline::packBufferBytes(frame.pixels));
+    pipeline.pack(frame.outputPixels, frame.pixels.layout, lease.buffer, frame.timer, set);
+    frame.pixels.bytes = std::move(lease.bytes);
+    frame.fence = gl::Fence::insert();
+  }
+  void finishDeferred(PendingFrame& frame);
   std::uint64_t submit(const RenderRequest& request);
+  void drawAndPack(const RenderRequest& request, const CachedScene& scene, PendingFrame& frame);
   RenderResult take(const std::deque<PendingFrame>::iterator& frame);
 };
 
@@ -222,7 +245,7 @@ std::uint64_t Renderer::Impl::submit(const RenderRequest& request) {
   if (!lookup.hit) report.timings.add("scene release", TimingRow::Clock::Cpu, lookup.releaseMs);
   report.warnings = lookup.entry->scene.warnings;
 
-  const OutputPixels pixels = outputPixelsFor(request.output);
+  frame.outputPixels = outputPixelsFor(request.output);
   frame.pixels.width = request.output.width;
   frame.pixels.height = request.output.height;
   frame.pixels.layout = pixelLayoutFor(request.output);
@@ -231,11 +254,7 @@ std::uint64_t Renderer::Impl::submit(const RenderRequest& request) {
     spareTimers.push_back(std::move(frame.timer));
   };
   try {
-    pipeline.draw(request, *lookup.entry, frame.timer, report, pixels);
-    gl::ReadbackPool::Lease lease = readback.acquire(FramePipeline::packBufferBytes(frame.pixels));
-    pipeline.pack(pixels, frame.pixels.layout, lease.buffer, frame.timer);
-    frame.pixels.bytes = std::move(lease.bytes);
-    frame.fence = gl::Fence::insert();
+    drawAndPack(request, *lookup.entry, frame);
   } catch (...) {
     abandon();
     checkContext();  // a lost context explains the failure better than the failure does
@@ -252,6 +271,43 @@ std::uint64_t Renderer::Impl::submit(const RenderRequest& request) {
   frame.id = nextFrameId++;
   pending.push_back(std::move(frame));
   return pending.back().id;
+}
+
+// With overlapped frames (RendererOptions::overlapShadowedFrames), GL's queue runs this frame's
+// G-buffer and ray set-up while Vulkan traces the frame before it, whose remaining passes follow:
+// they wait for their rays without holding up this frame's. Each of the two frame sets is used by
+// every other split frame.
+void Renderer::Impl::drawAndPack(const RenderRequest& request, const CachedScene& scene,
+                                 PendingFrame& frame) {
+  PendingFrame* deferred = options.overlapShadowedFrames ? deferredFrame() : nullptr;
+  if (!options.overlapShadowedFrames) {
+    pipeline.draw(request, scene, frame.timer, frame.report, frame.outputPixels);
+    pack(frame, 0);
+    return;
+  }
+  const int set = deferred != nullptr ? 1 - deferred->remaining->set : 0;
+  frame.remaining =
+      pipeline.drawUntilShadows(request, scene, frame.timer, frame.report, frame.outputPixels, set);
+  if (deferred != nullptr) finishDeferred(*deferred);
+  if (!frame.remaining) pack(frame, set);
+}
+
+void Renderer::Impl::finishDeferred(PendingFrame& frame) {
+  const RemainingPasses remaining = std::move(*frame.remaining);
+  frame.remaining.reset();
+  try {
+    pipeline.finishDraw(remaining, frame.timer);
+    pack(frame, remaining.set);
+  } catch (const std::exception& error) {
+    // Its rays' semaphore may be left signalled and never waited on: this renderer's shadow
+    // lanes cannot be trusted any more, and its frames in flight go with it.
+    healthy = false;
+    spdlog::error("renderer: a frame's last passes failed after its rays were handed over: {}",
+                  error.what());
+    throw Error(
+        ErrorCode::Internal,
+        std::string("a frame's last passes failed (the renderer is made again): ") + error.what());
+  }
 }
 
 RenderResult Renderer::Impl::take(const std::deque<PendingFrame>::iterator& frame) {

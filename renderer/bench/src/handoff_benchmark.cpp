@@ -120,7 +120,7 @@ void measureInProcess(const HandoffBenchmarkOptions& o, HandoffBenchmarkResult& 
     throw Error(ErrorCode::Unavailable, "this machine cannot trace: " + device.unavailableReason());
   }
   const auto scene = tracer->buildScene(Scene{});
-  RayBatchTransport transport(*tracer);
+  RayBatchTransport transport(*tracer, 0);
   const vk::RayBatchShape shape{1, 1, 1};
   const RayBatchTransport::GlBuffers buffers = transport.prepare(shape);
   const float origin[4] = {0.0F, 0.0F, 0.0F, 1.0F};

@@ -56,6 +56,11 @@ struct RendererOptions {
   // "GPU targets, fourth and fifth rounds"): with 2, and then with 4 once it issued them faster,
   // a render thread issuing small frames waited for them.
   int framesInFlight = 8;
+  // A shadowed frame's last passes (direct lighting, composite, read-back copy) are issued after
+  // the next frame's G-buffer and ray set-up, so that GL draws that frame while Vulkan traces
+  // this one's rays instead of waiting for them (docs/SHADOWS.md, "Overlapped frames"). A frame
+  // left so is finished by the next submit(), or when it is waited for or polled as the oldest.
+  bool overlapShadowedFrames = true;
   // Untrusted assets (paths, uploads, inline GLBs) parsed in a worker process
   // (lgh/scene_worker.hpp) rather than in this one: a parser crash or runaway then fails one load,
   // not the process. Empty executable: in this process.

@@ -8,12 +8,13 @@ namespace {
 // GL writes the rays; Vulkan writes the hits. Both buffers are named in the semaphore signal and
 // wait.
 BatchLayout hitBatchLayout() {
-  return {.logPrefix = "gi",
-          .batches = "closest-hit batches",
-          .bufferNames = "closest-hit buffers",
-          .buffers = {{.glWrites = true, .signalled = true, .waited = true},
-                      {.glWrites = false, .signalled = true, .waited = true}},
-          .exportSemaphores = &vk::ShadowTracer::exportHitSemaphores};
+  return {
+      .logPrefix = "gi",
+      .batches = "closest-hit batches",
+      .bufferNames = "closest-hit buffers",
+      .buffers = {{.glWrites = true, .signalled = true, .waited = true},
+                  {.glWrites = false, .signalled = true, .waited = true}},
+      .exportSemaphores = [](vk::ShadowTracer& tracer) { return tracer.exportHitSemaphores(); }};
 }
 
 }  // namespace

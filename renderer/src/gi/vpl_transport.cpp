@@ -16,7 +16,9 @@ BatchLayout vplLayout() {
           .batches = "light-path VPLs",
           .bufferNames = "VPL buffer",
           .buffers = {{.glWrites = false, .signalled = true, .waited = true}},
-          .exportSemaphores = &vk::ShadowTracer::exportLightPathSemaphores};
+          .exportSemaphores = [](vk::ShadowTracer& tracer) {
+            return tracer.exportLightPathSemaphores();
+          }};
 }
 
 }  // namespace

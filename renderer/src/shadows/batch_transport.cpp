@@ -77,7 +77,8 @@ BatchTransport::BatchTransport(vk::ShadowTracer& tracer, BatchLayout layout)
       layout_(std::move(layout)),
       imported_(layout_.buffers.size()),
       staging_(layout_.buffers.size()) {
-  if (layout_.buffers.empty() || layout_.buffers.size() > kMaxBatchBuffers) {
+  if (layout_.buffers.empty() || layout_.buffers.size() > kMaxBatchBuffers ||
+      !layout_.exportSemaphores) {
     throw Error(ErrorCode::Internal, fmt::format("{}: a batch transport of {} buffers",
                                                  layout_.logPrefix, layout_.buffers.size()));
   }
@@ -138,7 +139,7 @@ bool BatchTransport::importAll(const BatchBuffers& buffers) {
 
 bool BatchTransport::importSemaphores() {
   if (!tracer_.info().externalSemaphoreFd || !glHasSemaphoreInterop()) return false;
-  const vk::SemaphoreFds fds = (tracer_.*layout_.exportSemaphores)();
+  const vk::SemaphoreFds fds = layout_.exportSemaphores(tracer_);
   // GL owns an fd once its import succeeds; a failed one is still ours to close.
   const auto import = [this](gl::Semaphore& semaphore, int fd) {
     clearGlErrors();
@@ -194,6 +195,20 @@ std::pair<std::array<GLuint, kMaxBatchBuffers>, GLuint> BatchTransport::interopB
 
 double BatchTransport::trace(const BuffersFor& buffersFor, std::span<const std::uint64_t> bytes,
                              const TraceOnVulkan& traceOnVulkan) {
+  const Stopwatch cpu;
+  handOver(buffersFor, bytes, traceOnVulkan);
+  awaitResults();
+  return cpu.elapsedMs();
+}
+
+void BatchTransport::awaitResults() {
+  if (mode_ != Mode::InteropSemaphores) return;
+  const auto [waited, waitCount] = interopBuffers(&BatchBufferUse::waited);
+  glWaitSemaphoreEXT(vkDone_.id(), waitCount, waited.data(), 0, nullptr, nullptr);
+}
+
+double BatchTransport::handOver(const BuffersFor& buffersFor, std::span<const std::uint64_t> bytes,
+                                const TraceOnVulkan& traceOnVulkan) {
   if (bytes.size() != layout_.buffers.size()) {
     throw Error(ErrorCode::Internal, fmt::format("{}: a batch traced with the sizes of {} buffers",
                                                  layout_.logPrefix, bytes.size()));
@@ -204,8 +219,6 @@ double BatchTransport::trace(const BuffersFor& buffersFor, std::span<const std::
     glSignalSemaphoreEXT(glDone_.id(), signalCount, signalled.data(), 0, nullptr, nullptr);
     glFlush();
     traceOnVulkan(true);
-    const auto [waited, waitCount] = interopBuffers(&BatchBufferUse::waited);
-    glWaitSemaphoreEXT(vkDone_.id(), waitCount, waited.data(), 0, nullptr, nullptr);
     return cpu.elapsedMs();
   }
   if (mode_ == Mode::InteropFinish) {

@@ -40,8 +40,8 @@ struct BatchLayout {
   std::string_view batches;             // what is handed over, for the log: "rays"
   std::string_view bufferNames;         // the buffers, for the log and errors: "ray buffers"
   std::vector<BatchBufferUse> buffers;  // in the order of BatchBuffers::parts
-  // The tracer's semaphore export for this kind of batch.
-  vk::SemaphoreFds (vk::ShadowTracer::*exportSemaphores)() = nullptr;
+  // The tracer's semaphore export for this kind of batch (and lane).
+  std::function<vk::SemaphoreFds(vk::ShadowTracer&)> exportSemaphores;
 };
 
 inline constexpr std::size_t kMaxBatchBuffers = 3;
@@ -68,11 +68,19 @@ class BatchTransport {
   std::span<const GLuint> prepare(const BuffersFor& buffersFor);
 
   // Hands what GL wrote to Vulkan, traces it, and makes what Vulkan wrote visible to GL's next
-  // commands. `bytes`: of each buffer the batch uses (the staging copies). Returns the CPU
-  // milliseconds of the hand-over: copying (staging), waiting (finish), or signalling the
-  // semaphores and recording and submitting Vulkan's commands (semaphores).
+  // commands: handOver() then awaitResults(). `bytes`: of each buffer the batch uses (the staging
+  // copies). Returns the CPU milliseconds of the hand-over: copying (staging), waiting (finish),
+  // or signalling the semaphores and recording and submitting Vulkan's commands (semaphores).
   double trace(const BuffersFor& buffersFor, std::span<const std::uint64_t> bytes,
                const TraceOnVulkan& traceOnVulkan);
+  // The first half of trace(): with semaphores, GL signals and Vulkan's trace is submitted, and
+  // GL's commands issued before awaitResults() run while Vulkan traces (they must not touch the
+  // batch's buffers); the other transports finish the whole trace here.
+  double handOver(const BuffersFor& buffersFor, std::span<const std::uint64_t> bytes,
+                  const TraceOnVulkan& traceOnVulkan);
+  // The second half: GL's next commands wait for the trace handed over last (semaphores; the
+  // other transports have nothing left to do). Once per handOver().
+  void awaitResults();
 
   // "interop" (semaphores), "interop-finish" or "staging".
   std::string name() const;

@@ -13,7 +13,8 @@ namespace lgh {
 
 class RayBatchTransport {
  public:
-  explicit RayBatchTransport(vk::ShadowTracer& tracer);
+  // The tracer's buffers and semaphores of `lane` (vk::kRayLanes of them).
+  RayBatchTransport(vk::ShadowTracer& tracer, vk::RayLane lane);
 
   struct GlBuffers {
     GLuint origins = 0;
@@ -28,6 +29,11 @@ class RayBatchTransport {
   // waiting (finish/fence); 0 with semaphores.
   double trace(const vk::TraceScene& scene, vk::TracePath path, const vk::RayBatchShape& shape,
                const vk::TraceParams& params);
+  // trace() in two halves (BatchTransport::handOver and awaitResults): GL commands issued in
+  // between run while Vulkan traces.
+  double handOver(const vk::TraceScene& scene, vk::TracePath path, const vk::RayBatchShape& shape,
+                  const vk::TraceParams& params);
+  void awaitResults() { transport_.awaitResults(); }
 
   // "interop" (semaphores), "interop-finish" or "staging".
   std::string name() const { return transport_.name(); }
@@ -36,6 +42,7 @@ class RayBatchTransport {
   BatchTransport::BuffersFor buffersFor(const vk::RayBatchShape& shape);
 
   vk::ShadowTracer& tracer_;
+  vk::RayLane lane_;
   BatchTransport transport_;
 };
 

@@ -24,7 +24,7 @@ float surfaceOffset(const Scene& scene) {
 
 }  // namespace
 
-ShadowFrame::ShadowFrame(ShadowDevice* device) : device_(device) {}
+ShadowFrame::ShadowFrame(ShadowDevice* device, vk::RayLane lane) : device_(device), lane_(lane) {}
 ShadowFrame::~ShadowFrame() = default;
 
 vk::ShadowTracer* ShadowFrame::tracerFor(const ShadowSettings& settings, FrameReport& report) {
@@ -70,6 +70,9 @@ const vk::TraceScene& ShadowFrame::traceScene(vk::ShadowTracer& /*tracer*/,
 
 void ShadowFrame::trace(const ShadowFrameInputs& inputs, const CachedScene& scene,
                         const FrameTargets& frame, gl::GpuTimer& timer, FrameReport& report) {
+  // A frame that failed between its hand-over and its lighting left the wait unissued: issue it,
+  // so that every semaphore Vulkan signals is waited on once.
+  awaitVisibility();
   traced_ = false;
   buildGpuMs_ = {};
   buildWallMs_ = -1.0;
@@ -91,6 +94,7 @@ void ShadowFrame::trace(const ShadowFrameInputs& inputs, const CachedScene& scen
     traceRays(inputs, *tracer, path, scene, frame, timer, report);
   } catch (const Error& error) {
     transport_.reset();
+    awaiting_ = false;
     if (device_ != nullptr) device_->reset(error.message());
     throw;
   }
@@ -114,9 +118,16 @@ void ShadowFrame::traceRays(const ShadowFrameInputs& inputs, vk::ShadowTracer& t
   vk::TraceParams params;
   params.tMin = offset;
   params.endEpsilon = kEndEpsilon;
-  transferMs_ = transport.trace(accel, path, shape, params);
+  transferMs_ = transport.handOver(accel, path, shape, params);
   traced_ = true;
+  awaiting_ = true;
   report.decide("shadow_transport", transport.name());
+}
+
+void ShadowFrame::awaitVisibility() {
+  if (!awaiting_) return;
+  awaiting_ = false;
+  if (transport_) transport_->awaitResults();
 }
 
 ShadowRaySetupPass& ShadowFrame::setup() {
@@ -126,7 +137,7 @@ ShadowRaySetupPass& ShadowFrame::setup() {
 
 RayBatchTransport& ShadowFrame::transportFor(vk::ShadowTracer& tracer) {
   if (!transport_ || transportEpoch_ != device_->epoch()) {
-    transport_ = std::make_unique<RayBatchTransport>(tracer);
+    transport_ = std::make_unique<RayBatchTransport>(tracer, lane_);
     transportEpoch_ = device_->epoch();
   }
   return *transport_;

@@ -40,19 +40,25 @@ struct ShadowFrameInputs {
 
 class ShadowFrame {
  public:
-  explicit ShadowFrame(ShadowDevice* device);
+  // Traces in the tracer's ray lane `lane`: two ShadowFrames of different lanes may have their
+  // traces in flight at once.
+  ShadowFrame(ShadowDevice* device, vk::RayLane lane);
   ~ShadowFrame();
   ShadowFrame(const ShadowFrame&) = delete;
   ShadowFrame& operator=(const ShadowFrame&) = delete;
 
-  // Traces the frame's shadow rays, or decides that it has none (settings off, no tracer under
-  // auto, no rays). Throws lgh::Error: Unavailable when shadows are "on" without a tracer,
-  // Invalid for a tracing path the device lacks, Internal for a Vulkan failure (the tracer is
-  // then reset and made again by the next frame).
+  // Hands the frame's shadow rays to Vulkan, or decides that it has none (settings off, no tracer
+  // under auto, no rays). GL commands issued before awaitVisibility() run while Vulkan traces.
+  // Throws lgh::Error: Unavailable when shadows are "on" without a tracer, Invalid for a tracing
+  // path the device lacks, Internal for a Vulkan failure (the tracer is then reset and made again
+  // by the next frame).
   void trace(const ShadowFrameInputs& inputs, const CachedScene& scene, const FrameTargets& frame,
              gl::GpuTimer& timer, FrameReport& report);
+  // GL's next commands (the readers of visibility()) wait for the trace. No-op without one.
+  void awaitVisibility();
 
-  // The layout and visibility buffer the direct lighting reads (shadowedLights 0: unshadowed).
+  // The layout and visibility buffer the direct lighting reads (shadowedLights 0: unshadowed),
+  // once awaitVisibility() has been called.
   const ShadowRayLayout& layout() const { return layout_; }
   GLuint visibility() const { return traced_ ? buffers_.visibility : 0; }
   bool traced() const { return traced_; }
@@ -86,7 +92,9 @@ class ShadowFrame {
                  FrameReport& report);
 
   ShadowDevice* device_;
+  vk::RayLane lane_;
   std::unique_ptr<RayBatchTransport> transport_;
+  bool awaiting_ = false;  // trace() handed rays over; awaitVisibility() has not been called
   std::uint64_t transportEpoch_ = 0;  // the ShadowDevice epoch transport_ belongs to
   ShadowRaySetupPass& setup();        // compiled by the first shadowed frame, not at start-up
 

@@ -79,6 +79,10 @@ inline constexpr std::uint32_t kMaxRaysPerPixel = 64;
 
 enum class Transport { Interop, Staging };
 
+// Which of the shadow rays' buffer sets (each with its own semaphores) a batch uses: 0 or 1.
+using RayLane = std::uint32_t;
+inline constexpr RayLane kRayLanes = 2;
+
 // A buffer Vulkan owns, as GL gets to see it.
 struct SharedBuffer {
   std::uint64_t size = 0;  // bytes of the buffer
@@ -223,22 +227,35 @@ class ShadowTracer {
   using SceneBuilder = std::function<std::unique_ptr<TraceScene>(const Scene&)>;
   virtual SceneBuilder sceneBuilder() const = 0;
 
-  // The ray batch buffers for `shape`, reallocated (new generation, new fds) only when they must
-  // grow or the transport changes. Interop needs info().externalMemoryFd.
-  virtual const RayBuffers& rayBuffers(const RayBatchShape& shape, Transport transport) = 0;
+  // The ray batch buffers of `lane` for `shape`, reallocated (new generation, new fds) only when
+  // they must grow or the transport changes. Interop needs info().externalMemoryFd. Each of the
+  // kRayLanes lanes has buffers and semaphores of its own, so that one frame's trace may run
+  // while GL writes the next frame's rays into the other lane (docs/SHADOWS.md, "Overlapped
+  // frames").
+  virtual const RayBuffers& rayBuffers(const RayBatchShape& shape, Transport transport,
+                                       RayLane lane) = 0;
+  const RayBuffers& rayBuffers(const RayBatchShape& shape, Transport transport) {
+    return rayBuffers(shape, transport, 0);
+  }
 
-  // A fresh pair of exported semaphores (needs info().externalSemaphoreFd). Once GL has imported
-  // them, trace(..., useSemaphores = true) waits on and signals the pair last exported.
-  virtual SemaphoreFds exportSemaphores() = 0;
+  // A fresh pair of exported semaphores for `lane` (needs info().externalSemaphoreFd). Once GL
+  // has imported them, trace(..., useSemaphores = true) of that lane waits on and signals the
+  // pair last exported.
+  virtual SemaphoreFds exportSemaphores(RayLane lane) = 0;
+  SemaphoreFds exportSemaphores() { return exportSemaphores(0); }
 
-  // Traces every ray of the batch in the buffers last returned by rayBuffers(). With
+  // Traces every ray of the batch in `lane`'s buffers as rayBuffers() last returned them. With
   // useSemaphores, the GPU waits for GL's `glDone` and signals `vkDone`, and trace() returns once
   // the work is submitted; otherwise the caller has made the inputs visible (glFinish, or the
   // staging copy) and trace() returns when the GPU has finished. Several traces may run in one
   // frame (the brute-force reference traces its lights in chunks). Throws lgh::Error(Internal)
   // on a Vulkan failure (VK_ERROR_DEVICE_LOST included: the tracer must then be created again).
   virtual void trace(const TraceScene& scene, TracePath path, const RayBatchShape& shape,
-                     const TraceParams& params, bool useSemaphores) = 0;
+                     const TraceParams& params, bool useSemaphores, RayLane lane) = 0;
+  void trace(const TraceScene& scene, TracePath path, const RayBatchShape& shape,
+             const TraceParams& params, bool useSemaphores) {
+    trace(scene, path, shape, params, useSemaphores, 0);
+  }
 
   // Traces are numbered 1, 2, ... by the tracer: the number of the last trace() (0: none).
   virtual std::uint64_t lastTrace() const = 0;

@@ -112,7 +112,8 @@ class VulkanShadowTracer final : public ShadowTracer {
     };
   }
 
-  const RayBuffers& rayBuffers(const RayBatchShape& shape, Transport transport) override {
+  const RayBuffers& rayBuffers(const RayBatchShape& shape, Transport transport,
+                               RayLane lane) override {
     return translateVulkanErrors("rayBuffers", [&]() -> const RayBuffers& {
       checkShape(shape, device_->limits().maxStorageBufferRange);
       if (transport == Transport::Interop && !info_.externalMemoryFd) {
@@ -120,48 +121,51 @@ class VulkanShadowTracer final : public ShadowTracer {
             ErrorCode::Unavailable,
             fmt::format("interop ray buffers: {} cannot export memory as fds", info_.deviceName));
       }
-      if (!rayBuffers_.fits(shape, transport)) {
+      RayBufferSet& buffers = rayBuffers_.at(checkLane(lane));
+      if (!buffers.fits(shape, transport)) {
         submissions_.retireAll();  // no trace may still use the old buffers
-        rayBuffers_.reallocate(*device_, shape, transport);
+        buffers.reallocate(*device_, shape, transport);
       }
-      return rayBuffers_.shared();
+      return buffers.shared();
     });
   }
 
-  SemaphoreFds exportSemaphores() override {
+  SemaphoreFds exportSemaphores(RayLane lane) override {
     return translateVulkanErrors("exportSemaphores", [&] {
       if (!info_.externalSemaphoreFd) {
         throw Error(ErrorCode::Unavailable,
                     fmt::format("{} cannot export semaphores as fds", info_.deviceName));
       }
+      std::optional<ExportedSemaphores>& semaphores = semaphores_.at(checkLane(lane));
       submissions_.retireAll();  // no submission may still wait on or signal the old pair
-      semaphores_.emplace(*device_);
-      return semaphores_->exportFds();
+      semaphores.emplace(*device_);
+      return semaphores->exportFds();
     });
   }
 
   void trace(const TraceScene& scene, TracePath path, const RayBatchShape& shape,
-             const TraceParams& params, bool useSemaphores) override {
+             const TraceParams& params, bool useSemaphores, RayLane lane) override {
     translateVulkanErrors("trace", [&] {
       const AccelerationScene& built = ownScene(scene);
       const TraceRecorder& recorder = pathFor(path);
-      checkBatch(shape, useSemaphores);
+      checkBatch(shape, useSemaphores, lane);
+      const RayBufferSet& buffers = rayBuffers_[lane];
       const std::uint32_t slot = submissions_.acquire();
       layout_.write(slot, {.scene = built.topLevel(),
-                           .origins = rayBuffers_.origins(),
-                           .targets = rayBuffers_.targets(),
-                           .visibility = rayBuffers_.visibility()});
+                           .origins = buffers.origins(),
+                           .targets = buffers.targets(),
+                           .visibility = buffers.visibility()});
       const TracePushConstants constants = pushConstants(shape, params);
-      const std::array<::vk::Buffer, 3> shared{rayBuffers_.origins(), rayBuffers_.targets(),
-                                               rayBuffers_.visibility()};
+      const std::array<::vk::Buffer, 3> shared{buffers.origins(), buffers.targets(),
+                                               buffers.visibility()};
       submitTraceBatch(submissions_, slot, device_->queueFamily(),
                        {.recorder = &recorder,
                         .set = layout_.set(slot),
                         .constants = constantBytes(constants),
                         .launch = {.width = shape.width, .height = shape.height},
-                        .transport = rayBuffers_.shared().transport,
+                        .transport = buffers.shared().transport,
                         .buffers = shared},
-                       useSemaphores ? &*semaphores_ : nullptr);
+                       useSemaphores ? &*semaphores_[lane] : nullptr);
     });
   }
 
@@ -229,14 +233,23 @@ class VulkanShadowTracer final : public ShadowTracer {
     return *recorder;
   }
 
-  void checkBatch(const RayBatchShape& shape, bool useSemaphores) const {
+  static RayLane checkLane(RayLane lane) {
+    if (lane >= kRayLanes) {
+      throw Error(ErrorCode::Invalid,
+                  fmt::format("ray lane {}: the tracer has lanes 0 to {}", lane, kRayLanes - 1));
+    }
+    return lane;
+  }
+
+  void checkBatch(const RayBatchShape& shape, bool useSemaphores, RayLane lane) const {
     checkShape(shape, device_->limits().maxStorageBufferRange);
-    if (!rayBuffers_.allocated() || !rayBuffers_.fits(shape, rayBuffers_.shared().transport)) {
+    const RayBufferSet& buffers = rayBuffers_.at(checkLane(lane));
+    if (!buffers.allocated() || !buffers.fits(shape, buffers.shared().transport)) {
       throw Error(ErrorCode::Invalid,
                   "trace: the ray buffers do not hold the batch: call rayBuffers() with its "
                   "shape first");
     }
-    if (useSemaphores && !semaphores_) {
+    if (useSemaphores && !semaphores_[lane]) {
       throw Error(ErrorCode::Invalid, "trace: no semaphores to wait on: call exportSemaphores()");
     }
   }
@@ -247,8 +260,8 @@ class VulkanShadowTracer final : public ShadowTracer {
   std::unique_ptr<TraceRecorder> rayQuery_;
   std::unique_ptr<TraceRecorder> pipeline_;
   TraceSubmissions submissions_;
-  RayBufferSet rayBuffers_;
-  std::optional<ExportedSemaphores> semaphores_;
+  std::array<RayBufferSet, kRayLanes> rayBuffers_;
+  std::array<std::optional<ExportedSemaphores>, kRayLanes> semaphores_;
   HitTracer hits_;
   LightPathTracer lightPaths_;
 };
