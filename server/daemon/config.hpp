@@ -71,7 +71,7 @@ struct DaemonConfig {
   bool sceneWorker = true;
   std::size_t sceneWorkerMemoryMb = 4096;
   double sceneWorkerTimeoutSeconds = 120.0;
-  int sceneParsers = 0;  // parser processes per render worker; 0: a quarter of the cores, 1 to 4
+  int sceneParsers = 0;  // parser processes per render worker; 0: half the hardware threads, 1 to 8
   int sceneParserCount() const;
   std::string testSceneWorkerCrashMarker;  // FOR TESTS ONLY
   Limits limits;
