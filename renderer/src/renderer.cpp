@@ -293,7 +293,7 @@ void Renderer::Impl::drawAndPack(const RenderRequest& request, const CachedScene
 }
 
 void Renderer::Impl::finishDeferred(PendingFrame& frame) {
-  const RemainingPasses remaining = std::move(*frame.remaining);
+  const RemainingPasses remaining = *frame.remaining;
   frame.remaining.reset();
   try {
     pipeline.finishDraw(remaining, frame.timer);

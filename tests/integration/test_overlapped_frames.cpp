@@ -81,6 +81,7 @@ std::vector<json> mixedSequence() {
 
 std::vector<lgh::RenderResult> submitAll(lgh::Renderer& renderer, const std::vector<json>& frames) {
   std::vector<std::uint64_t> ids;
+  ids.reserve(frames.size());
   for (const json& frame : frames) ids.push_back(renderer.submit(lgh::parseRenderRequest(frame)));
   std::vector<lgh::RenderResult> results;
   while (std::optional<lgh::RenderResult> result = renderer.finish(true)) {
