@@ -168,6 +168,7 @@ class SceneCache {
     std::string key;
     std::shared_ptr<CachedScene> entry;
   };
+  void release(Slot evicted);
   std::list<Slot> slots_;  // front: most recently used
   std::uint64_t hits_ = 0;
   std::uint64_t misses_ = 0;
