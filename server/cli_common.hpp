@@ -19,12 +19,13 @@ struct ContextFlags {
   bool requireGpu = false;
   bool glDebug = false;
   bool noFrameOverlap = false;
+  bool noGlWorker = false;
   std::string assetRoot = ".";
   std::string logLevel = "warn";
 };
 
-// Adds --backend, --gpu, --require-gpu, --gl-debug, --no-frame-overlap, --asset-root,
-// --log-level.
+// Adds --backend, --gpu, --require-gpu, --gl-debug, --no-frame-overlap, --no-gl-worker,
+// --asset-root, --log-level.
 void addContextFlags(CLI::App& app, ContextFlags& flags);
 RendererOptions rendererOptions(const ContextFlags& flags);
 // Logs to stderr at the given level ("trace".."off").

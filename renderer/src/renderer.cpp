@@ -55,7 +55,10 @@ struct PendingFrame {
 
 struct Renderer::Impl {
   explicit Impl(const RendererOptions& opts)
-      : options(opts), context(GlContext::create(opts)), cache(opts), pipeline(&shadowDevice) {
+      : options(opts),
+        context(GlContext::create(opts)),
+        cache(opts, context.get()),
+        pipeline(&shadowDevice) {
     device = context->info();
     if (opts.debugContextLossAfter >= 0) {
       simulatedLossAfter = opts.debugContextLossAfter;
@@ -236,6 +239,14 @@ std::uint64_t Renderer::Impl::submit(const RenderRequest& request) {
   if (lookup.prefetched) report.decide("scene_parse", "prefetched");
   report.timings.add("scene load", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.loadMs);
   report.timings.add("upload", TimingRow::Clock::Cpu, lookup.hit ? 0.0 : lookup.uploadMs);
+  if (cache.hasGlWorker()) {
+    // Not part of "submit": the GL worker's upload of a scene parsed ahead.
+    report.timings.add("upload ahead", TimingRow::Clock::Cpu,
+                       lookup.hit ? 0.0 : lookup.uploadAheadMs);
+    report.decide("scene_upload", lookup.hit                   ? "cached"
+                                  : lookup.uploadAheadMs > 0.0 ? "gl_worker"
+                                                               : "render_thread");
+  }
   // Parts of "submit" spent waiting: for a frame in flight to finish (--frames-in-flight), and
   // for the scene's parse (a prefetch not done yet, or a parse of its own) besides its upload.
   report.timings.add("slot wait", TimingRow::Clock::Cpu, slotWaitMs);

@@ -61,6 +61,11 @@ struct RendererOptions {
   // this one's rays instead of waiting for them (docs/SHADOWS.md, "Overlapped frames"). A frame
   // left so is finished by the next submit(), or when it is waited for or polled as the oldest.
   bool overlapShadowedFrames = true;
+  // A second GL context in the render context's share group, current on a thread of its own
+  // (the GL worker): scenes parsed ahead are uploaded there, and evicted scenes freed there, off
+  // the render thread (docs/ARCHITECTURE.md, "GL worker"). Off, or when the driver gives no
+  // shared context (logged), both happen on the render thread.
+  bool glWorker = true;
   // Untrusted assets (paths, uploads, inline GLBs) parsed in a worker process
   // (lgh/scene_worker.hpp) rather than in this one: a parser crash or runaway then fails one load,
   // not the process. Empty executable: in this process.

@@ -126,13 +126,40 @@ class EglContext final : public GlContext {
     loadGl(eglProcAddress, nullptr);
   }
 
+  // A context in `share`'s share group, with its config and attributes (EGL requires the same
+  // reset notification strategy), made current later by the thread that uses it.
+  explicit EglContext(const EglContext& share, int /*tag*/)
+      : display_(share.display_), config_(share.config_), attributes_(share.attributes_) {
+    info_ = share.info_;
+    info_.contextPath = share.info_.contextPath + " (shared)";
+    DisplayUsers::acquire(display_);
+    initialized_ = true;
+    context_ = eglCreateContext(display_, config_, share.context_, attributes_.data());
+    if (context_ == EGL_NO_CONTEXT) failEgl("eglCreateContext (sharing the renderer's objects)");
+  }
+
   ~EglContext() override {
     releaseApi();
     if (context_ != EGL_NO_CONTEXT) {
-      eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      // Only this thread's binding of this context: destroying a shared context on the render
+      // thread must leave the render thread's own context current.
+      if (eglGetCurrentContext() == context_) {
+        eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      }
       eglDestroyContext(display_, context_);
     }
     if (initialized_ && DisplayUsers::release(display_)) eglTerminate(display_);
+  }
+
+  std::unique_ptr<GlContext> createShared() const override {
+    return std::make_unique<EglContext>(*this, 0);
+  }
+  void doneCurrent() override {
+    releaseApi();
+    if (eglGetCurrentContext() == context_) {
+      eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    }
+    eglReleaseThread();
   }
 
   EglContext(const EglContext&) = delete;
@@ -149,6 +176,7 @@ class EglContext final : public GlContext {
       failEgl("eglMakeCurrent (surfaceless)");
     }
   }
+  void loadFunctions() override { loadGl(eglProcAddress, nullptr); }
 
  private:
   // The ways to ask for a robust context with reset notification, best first: EGL 1.5's core
@@ -181,7 +209,7 @@ class EglContext final : public GlContext {
     if (!hasExtension(extensions, "EGL_KHR_surfaceless_context")) {
       throw Error(ErrorCode::Unavailable, "EGL display lacks EGL_KHR_surfaceless_context");
     }
-    EGLConfig config = chooseConfig(extensions);
+    config_ = chooseConfig(extensions);
     // A robust context (GL_KHR_robustness) reports a GPU reset instead of hanging on it: the
     // renderer then fails the frame and is made again.
     const std::vector<Robustness> variants = robustnessVariants(egl15, extensions);
@@ -196,9 +224,10 @@ class EglContext final : public GlContext {
         attributes.insert(attributes.end(), robustness.attributes.begin(),
                           robustness.attributes.end());
         attributes.push_back(EGL_NONE);
-        context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, attributes.data());
+        context_ = eglCreateContext(display_, config_, EGL_NO_CONTEXT, attributes.data());
         const bool robust = !robustness.attributes.empty();
         if (context_ != EGL_NO_CONTEXT) {
+          attributes_ = std::move(attributes);
           info_.robustContext = robust;
           if (robust) spdlog::info("robust GL context ({})", robustness.name);
           return;
@@ -224,6 +253,8 @@ class EglContext final : public GlContext {
   }
 
   EGLDisplay display_;
+  EGLConfig config_ = nullptr;
+  std::vector<EGLint> attributes_;  // the context's, for contexts that share its objects
   EGLContext context_ = EGL_NO_CONTEXT;
   bool initialized_ = false;
 };

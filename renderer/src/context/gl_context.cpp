@@ -56,6 +56,10 @@ GlContext::~GlContext() = default;
 
 void GlContext::makeCurrent() {
   bindPlatform();
+  if (!loaded_) {
+    loadFunctions();
+    return;
+  }
   gl::setCurrentApi(&api_);
 }
 
@@ -71,6 +75,7 @@ void GlContext::loadGl(GLADuserptrloadfunc load, void* userData) {
                             "context reports no OpenGL version",
                             info_.contextPath));
   }
+  loaded_ = true;
   gl::setCurrentApi(&api_);
   readGlInfo();
   installDebugOutput();

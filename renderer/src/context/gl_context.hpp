@@ -24,8 +24,15 @@ class GlContext {
   GlContext(const GlContext&) = delete;
   GlContext& operator=(const GlContext&) = delete;
 
-  // Makes the context and its GL functions current on the calling thread.
+  // Makes the context and its GL functions current on the calling thread (a shared context's first
+  // call loads its functions).
   void makeCurrent();
+  // A second context in this one's share group, current nowhere yet: buffers, textures, samplers,
+  // sync objects and programs are common to both; vertex arrays, framebuffers and queries are
+  // not. For work off the render thread (gl/gl_worker.hpp). Throws lgh::Error(Unavailable).
+  virtual std::unique_ptr<GlContext> createShared() const = 0;
+  // Leaves the calling thread with no current context (a worker thread, before it ends).
+  virtual void doneCurrent() = 0;
   const DeviceInfo& info() const { return info_; }
   const gl::Api& api() const { return api_; }
 
@@ -33,6 +40,8 @@ class GlContext {
   GlContext() = default;
   // The platform's make-current for this context.
   virtual void bindPlatform() = 0;
+  // Once current for the first time (a shared context): loadGl with the platform's function.
+  virtual void loadFunctions() = 0;
   // Once the context is current for the first time: fills the function table through the
   // platform's proc-address function, makes it current and reads the GL strings into info_.
   void loadGl(GLADuserptrloadfunc load, void* userData);
@@ -44,6 +53,7 @@ class GlContext {
   void readGlInfo();
   void installDebugOutput();
   gl::Api api_{};
+  bool loaded_ = false;
 };
 
 // Creates an EGL context on an EGL device (egl-device) or on Mesa's surfaceless platform

@@ -22,12 +22,26 @@ class OsmesaContext final : public GlContext {
     bindPlatform();
     loadGl(osmesaProcAddress, nullptr);
   }
+  // A context sharing `share`'s objects, made current later by the thread that uses it.
+  explicit OsmesaContext(const osmesa::Context& share)
+      : context_(share.major(), share.minor(), &share) {
+    info_.contextPath = "osmesa (shared)";
+  }
   ~OsmesaContext() override { releaseApi(); }
   OsmesaContext(const OsmesaContext&) = delete;
   OsmesaContext& operator=(const OsmesaContext&) = delete;
 
+  std::unique_ptr<GlContext> createShared() const override {
+    return std::make_unique<OsmesaContext>(context_);
+  }
+  void doneCurrent() override {
+    releaseApi();
+    osmesa::Context::releaseCurrent();
+  }
+
  protected:
   void bindPlatform() override { context_.makeCurrent(); }
+  void loadFunctions() override { loadGl(osmesaProcAddress, nullptr); }
 
  private:
   osmesa::Context context_;

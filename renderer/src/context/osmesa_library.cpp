@@ -56,7 +56,7 @@ const Library& library() {
 
 }  // namespace
 
-Context::Context(int major, int minor) {
+Context::Context(int major, int minor, const Context* share) : major_(major), minor_(minor) {
   const Library& lib = library();
   const int attributes[] = {OSMESA_FORMAT,
                             OSMESA_RGBA,
@@ -73,11 +73,12 @@ Context::Context(int major, int minor) {
                             OSMESA_CONTEXT_MINOR_VERSION,
                             minor,
                             0};
-  context_ = lib.createContextAttribs(attributes, nullptr);
+  context_ = lib.createContextAttribs(
+      attributes, share != nullptr ? static_cast<OSMesaContext>(share->context_) : nullptr);
   if (context_ == nullptr) {
-    throw Error(
-        ErrorCode::Unavailable,
-        fmt::format("OSMesaCreateContextAttribs gave no OpenGL {}.{} core context", major, minor));
+    throw Error(ErrorCode::Unavailable,
+                fmt::format("OSMesaCreateContextAttribs gave no OpenGL {}.{} core context{}", major,
+                            minor, share != nullptr ? " sharing the renderer's objects" : ""));
   }
 }
 
@@ -92,6 +93,8 @@ void Context::makeCurrent() {
   }
 }
 
+void Context::releaseCurrent() { library().makeCurrent(nullptr, nullptr, GL_UNSIGNED_BYTE, 0, 0); }
+
 void* Context::procAddress(const char* name) {
   return reinterpret_cast<void*>(library().getProcAddress(name));
 }
@@ -100,12 +103,13 @@ bool compiledIn() { return true; }
 
 #else  // !LGH_OSMESA
 
-Context::Context(int /*major*/, int /*minor*/) {
+Context::Context(int /*major*/, int /*minor*/, const Context* /*share*/) {
   throw Error(ErrorCode::Unavailable,
               "this build has no OSMesa path (configured with -DLGH_OSMESA=OFF)");
 }
 Context::~Context() = default;
 void Context::makeCurrent() {}
+void Context::releaseCurrent() {}
 void* Context::procAddress(const char* /*name*/) { return nullptr; }
 bool compiledIn() { return false; }
 

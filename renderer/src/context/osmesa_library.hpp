@@ -9,18 +9,25 @@ namespace lgh::osmesa {
 // into framebuffer objects; the buffer is only what OSMesaMakeCurrent needs).
 class Context {
  public:
-  // Throws lgh::Error(Unavailable) when the library is missing or gives no such context.
-  Context(int major, int minor);
+  // Throws lgh::Error(Unavailable) when the library is missing or gives no such context. With
+  // `share`, the context shares its objects (buffers, textures, samplers, programs) with it.
+  Context(int major, int minor, const Context* share = nullptr);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
 
   void makeCurrent();
+  // Leaves the calling thread with no current OSMesa context.
+  static void releaseCurrent();
+  int major() const { return major_; }
+  int minor() const { return minor_; }
   // OSMesaGetProcAddress: every GL function the library offers, context-independent.
   static void* procAddress(const char* name);
 
  private:
   void* context_ = nullptr;
+  int major_ = 0;
+  int minor_ = 0;
   unsigned char buffer_[4] = {};
 };
 

@@ -43,6 +43,10 @@ bool Fence::wait(std::uint64_t timeoutNs) {
   return status == GL_ALREADY_SIGNALED || status == GL_CONDITION_SATISFIED;
 }
 
+void Fence::queueWait() const {
+  if (sync_ != nullptr) glWaitSync(sync_, 0, GL_TIMEOUT_IGNORED);
+}
+
 // ---- The pool ----
 
 struct ReadbackPool::Slot {

@@ -33,6 +33,10 @@ class Fence {
   // Whether the GPU got past the fence, waiting up to `timeoutNs` (0: just look). Throws
   // lgh::Error(Internal) when the wait fails (a lost context).
   bool wait(std::uint64_t timeoutNs);
+  // Makes the current context's GPU queue wait for the fence (glWaitSync): commands issued after
+  // this run after the fenced ones, though those were issued on another context of the share
+  // group; the CPU does not wait.
+  void queueWait() const;
   bool empty() const { return sync_ == nullptr; }
 
  private:

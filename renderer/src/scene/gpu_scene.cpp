@@ -30,6 +30,11 @@ glm::vec3 boundsCenter(const Primitive& primitive, const glm::mat4& world) {
 }  // namespace
 
 GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options)
+    : GpuScene(scene, options, VertexArraysLater{}) {
+  makeVertexArrays();
+}
+
+GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArraysLater /*later*/)
     : scene_(scene),
       options_(options),
       capabilities_(options.capabilities ? *options.capabilities : TextureCapabilities::query()) {
@@ -41,17 +46,19 @@ GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options)
   }
   for (const MeshInstance& instance : scene.instances) {
     if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= meshes_.size()) continue;
-    const Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
-    auto& gpuMesh = meshes_[static_cast<size_t>(instance.mesh)];
+    const auto meshIndex = static_cast<size_t>(instance.mesh);
+    const Mesh& mesh = scene.meshes[meshIndex];
+    auto& gpuMesh = meshes_[meshIndex];
     // gpuMesh holds mesh.primitives, then mesh.linesAndPoints, in order.
     for (size_t p = 0; p < gpuMesh.size(); ++p) {
       if (gpuMesh[p].indexCount == 0) continue;
       const bool triangles = p < mesh.primitives.size();
       const Primitive& primitive =
           triangles ? mesh.primitives[p] : mesh.linesAndPoints[p - mesh.primitives.size()];
-      drawItems_.push_back({gpuMesh[p].vertexArray.id(), gpuMesh[p].indexCount, primitive.material,
-                            instance.world, primitive.topology, primitive.unlit, primitive.tangents,
+      drawItems_.push_back({0, gpuMesh[p].indexCount, primitive.material, instance.world,
+                            primitive.topology, primitive.unlit, primitive.tangents,
                             boundsCenter(primitive, instance.world)});
+      drawPrimitives_.emplace_back(meshIndex, p);
     }
   }
   // The materials' own textures now, so that a scene's first frame and its load time carry them.
@@ -60,6 +67,44 @@ GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options)
       texture(*slot.texture, slot.usage);
     }
   }
+}
+
+GpuScene::~GpuScene() = default;
+
+std::unique_ptr<GpuScene> GpuScene::uploadShared(const Scene& scene,
+                                                 const GpuSceneOptions& options) {
+  std::unique_ptr<GpuScene> gpu(new GpuScene(scene, options, VertexArraysLater{}));
+  gpu->uploaded_ = gl::Fence::insert();
+  return gpu;
+}
+
+void GpuScene::adopt() {
+  if (vertexArrays_) return;
+  uploaded_.queueWait();
+  uploaded_ = gl::Fence();
+  makeVertexArrays();
+}
+
+void GpuScene::makeVertexArrays() {
+  for (auto& mesh : meshes_) {
+    for (GpuPrimitive& primitive : mesh) {
+      primitive.vertexArray = gl::VertexArray();
+      bindVertexArray(primitive);
+    }
+  }
+  for (size_t i = 0; i < drawItems_.size(); ++i) {
+    const auto [mesh, p] = drawPrimitives_[i];
+    drawItems_[i].vertexArray = meshes_[mesh][p].vertexArray.id();
+  }
+  vertexArrays_ = true;
+}
+
+void GpuScene::releaseVertexArrays() {
+  for (auto& mesh : meshes_) {
+    for (GpuPrimitive& primitive : mesh) primitive.vertexArray.reset();
+  }
+  for (DrawItem& item : drawItems_) item.vertexArray = 0;
+  vertexArrays_ = false;
 }
 
 void GpuScene::uploadPrimitive(const Primitive& primitive, GpuPrimitive& gpu) {
@@ -71,6 +116,9 @@ void GpuScene::uploadPrimitive(const Primitive& primitive, GpuPrimitive& gpu) {
                        primitive.indices.data(), 0);
   geometryBytes_ += static_cast<std::size_t>(vertexBytes + indexBytes);
   gpu.indexCount = static_cast<GLsizei>(primitive.indices.size());
+}
+
+void GpuScene::bindVertexArray(const GpuPrimitive& gpu) {
   const GLuint vao = gpu.vertexArray.id();
   glVertexArrayVertexBuffer(vao, 0, gpu.vertices.id(), 0, sizeof(Vertex));
   glVertexArrayElementBuffer(vao, gpu.indices.id());

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -16,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include "gl/gl_objects.hpp"
+#include "gl/readback_buffers.hpp"
 #include "scene/scene.hpp"
 #include "scene/texture_upload.hpp"
 
@@ -33,6 +35,21 @@ class GpuScene {
  public:
   // Keeps a reference to `scene` (its images upload on first use): the cache entry owns both.
   GpuScene(const Scene& scene, const GpuSceneOptions& options);
+  ~GpuScene();
+  GpuScene(const GpuScene&) = delete;
+  GpuScene& operator=(const GpuScene&) = delete;
+
+  // The upload on another context of the render context's share group (gl/gl_worker.hpp): the
+  // buffers, textures and samplers, behind a fence; vertex arrays are per context, and are left
+  // to adopt(). Nothing is drawn from it before adopt().
+  static std::unique_ptr<GpuScene> uploadShared(const Scene& scene, const GpuSceneOptions& options);
+  // On the render thread, once, for a scene from uploadShared(): makes the render context's GPU
+  // queue wait for the upload's fence (the CPU does not wait) and makes the vertex arrays.
+  void adopt();
+  bool adopted() const { return vertexArrays_; }
+  // On the render thread: deletes the vertex arrays, so that the rest (shared objects only) may
+  // be freed on another context of the share group.
+  void releaseVertexArrays();
 
   struct DrawItem {
     GLuint vertexArray;
@@ -70,8 +87,12 @@ class GpuScene {
   float maxAnisotropy() const { return options_.maxAnisotropy; }
 
  private:
+  struct VertexArraysLater {};
+  GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArraysLater later);
+  void makeVertexArrays();
+
   struct GpuPrimitive {
-    gl::VertexArray vertexArray;
+    gl::VertexArray vertexArray = gl::VertexArray::empty();  // made by makeVertexArrays()
     gl::Buffer vertices;
     gl::Buffer indices;
     GLsizei indexCount = 0;
@@ -83,12 +104,17 @@ class GpuScene {
   GLuint samplerFor(const Sampler& sampler);
   const UploadedImage* imageTexture(int image, TextureUsage usage);
   void uploadPrimitive(const Primitive& primitive, GpuPrimitive& gpu);
+  static void bindVertexArray(const GpuPrimitive& gpu);
 
   const Scene& scene_;
   GpuSceneOptions options_;
   TextureCapabilities capabilities_;
   std::vector<std::vector<GpuPrimitive>> meshes_;
   std::vector<DrawItem> drawItems_;
+  // The primitive of each draw item (mesh, index in meshes_), for its vertex array.
+  std::vector<std::pair<std::size_t, std::size_t>> drawPrimitives_;
+  bool vertexArrays_ = false;
+  gl::Fence uploaded_;  // uploadShared()'s, until adopt()
   // By (image, kind): the kinds an upload distinguishes (without compression colour and data).
   std::map<std::pair<int, int>, UploadedImage> textures_;
   std::map<Sampler, gl::SamplerObject> samplers_;

@@ -29,7 +29,54 @@ std::uint64_t fnv1a(const std::vector<std::uint8_t>& bytes) {
 
 }  // namespace
 
-SceneCache::SceneCache(const RendererOptions& options) : options_(options) {
+void GpuSceneDeleter::operator()(GpuScene* scene) const {
+  if (worker == nullptr || worker->sharesCurrentContext()) {
+    delete scene;  // NOLINT(cppcoreguidelines-owning-memory): the owner's deleter
+    return;
+  }
+  worker->post([scene] { delete scene; });  // NOLINT(cppcoreguidelines-owning-memory)
+}
+
+namespace {
+
+std::unique_ptr<gl::Worker> makeGlWorker(const RendererOptions& options, const GlContext* context) {
+  if (!options.glWorker || context == nullptr) return nullptr;
+  try {
+    auto worker = std::make_unique<gl::Worker>(context->createShared(), &context->api());
+    spdlog::info("scene cache: scenes are uploaded ahead and freed on a GL worker ({})",
+                 worker->info().contextPath);
+    return worker;
+  } catch (const std::exception& error) {
+    spdlog::warn(
+        "scene cache: no GL worker ({}); scenes are uploaded and freed on the render thread",
+        error.what());
+    return nullptr;
+  }
+}
+
+// What a scene's upload takes on the GPU, before it is made: vertices, indices and its images
+// as RGBA8 with mipmaps.
+std::size_t estimatedUploadBytes(const Scene& scene) {
+  std::size_t bytes = 0;
+  for (const Mesh& mesh : scene.meshes) {
+    for (const auto* list : {&mesh.primitives, &mesh.linesAndPoints}) {
+      for (const Primitive& primitive : *list) {
+        bytes += primitive.vertices.size() * sizeof(Vertex) +
+                 primitive.indices.size() * sizeof(std::uint32_t);
+      }
+    }
+  }
+  for (const Image8& image : scene.images) {
+    bytes += static_cast<std::size_t>(std::max(image.width, 0)) *
+             static_cast<std::size_t>(std::max(image.height, 0)) * 4 * 4 / 3;
+  }
+  return bytes;
+}
+
+}  // namespace
+
+SceneCache::SceneCache(const RendererOptions& options, const GlContext* context)
+    : options_(options), glWorker_(makeGlWorker(options, context)) {
   if (!options_.sceneWorker.executable.empty()) {
     parsers_ = std::make_unique<worker::SceneWorkerPool>(options_.sceneWorker);
   }
@@ -156,9 +203,37 @@ SceneCache::Parsed SceneCache::parse(const RendererOptions& rendererOptions,
                                      const SceneLoadOptions& options, ParserTurn turn) {
   const Stopwatch timer;
   Parsed parsed;
-  parsed.scene = loadScene(rendererOptions, parsers, source, options, std::move(turn));
+  parsed.entry = std::make_shared<CachedScene>();
+  parsed.entry->scene = loadScene(rendererOptions, parsers, source, options, std::move(turn));
   parsed.loadMs = timer.elapsedMs();
   return parsed;
+}
+
+void SceneCache::uploadAhead(Parsed& parsed, gl::Worker& worker, const GpuSceneOptions& options,
+                             std::atomic<std::size_t>& aheadBytes) {
+  const std::size_t bytes = estimatedUploadBytes(parsed.entry->scene);
+  std::size_t held = aheadBytes.load();
+  do {
+    if (held + bytes > kMaxBytesUploadedAhead) return;  // uploaded when drawn
+  } while (!aheadBytes.compare_exchange_weak(held, held + bytes));
+  AheadReservation reservation(&aheadBytes, bytes);
+  const Stopwatch upload;
+  try {
+    const Scene& scene = parsed.entry->scene;
+    GpuSceneOwner gpu(
+        worker.run([&scene, &options] { return GpuScene::uploadShared(scene, options); })
+            .get()
+            .release(),
+        GpuSceneDeleter(&worker));
+    parsed.entry->gpu = std::move(gpu);
+  } catch (const std::exception& error) {
+    // The frame that draws the scene uploads it again, and reports what fails then.
+    spdlog::warn("scene cache: '{}' could not be uploaded ahead: {}", parsed.entry->scene.name,
+                 error.what());
+    return;
+  }
+  parsed.uploadMs = upload.elapsedMs();
+  parsed.uploadedAhead = std::move(reservation);
 }
 
 std::size_t SceneCache::prefetchDepth() const {
@@ -240,14 +315,18 @@ void SceneCache::startPrefetch(const std::string& key, std::shared_ptr<const Sce
     // The parsers serve it in hint order, whenever its thread gets to them.
     ParserTurn turn;
     if (parsers_) turn.emplace(parsers_->reserveTurn());
+    const GpuSceneOptions uploadOptions{maxAnisotropy_, options.textureCompression,
+                                        textureCapabilities_};
     auto parsing = std::make_shared<std::packaged_task<Parsed()>>(
         [rendererOptions = options_, parsers = parsers_.get(), source, options, buildTrace,
-         turn = std::move(turn)]() mutable {
+         turn = std::move(turn), glWorker = glWorker_.get(), uploadOptions,
+         aheadBytes = &uploadedAheadBytes_]() mutable {
           Parsed parsed = parse(rendererOptions, parsers, *source, options, std::move(turn));
+          if (glWorker != nullptr) uploadAhead(parsed, *glWorker, uploadOptions, *aheadBytes);
           if (buildTrace) {
             const Stopwatch build;
-            parsed.trace = buildTraceAhead(buildTrace, parsed.scene);
-            if (parsed.trace.scene) parsed.buildMs = build.elapsedMs();
+            parsed.entry->trace = buildTraceAhead(buildTrace, parsed.entry->scene);
+            if (parsed.entry->trace.scene) parsed.buildMs = build.elapsedMs();
           }
           return parsed;
         });
@@ -275,7 +354,6 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
     return lookup;
   }
   ++misses_;
-  auto entry = std::make_shared<CachedScene>();
   Parsed parsed;
   std::optional<Prefetch> next;  // for the same scene hinted again behind this one
   if (auto pending = oldestPrefetch(key); pending != prefetches_.end()) {
@@ -301,13 +379,19 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
                     parsed.loadMs);
     }
   }
-  entry->scene = std::move(parsed.scene);
-  entry->trace = std::move(parsed.trace);
+  std::shared_ptr<CachedScene> entry = std::move(parsed.entry);
   lookup.loadMs = parsed.loadMs;
   const Stopwatch uploadTimer;
-  entry->gpu = std::make_unique<GpuScene>(
-      entry->scene,
-      GpuSceneOptions{maxAnisotropy_, options.textureCompression, textureCapabilities_});
+  if (entry->gpu) {
+    entry->gpu->adopt();
+    lookup.uploadAheadMs = parsed.uploadMs;
+  } else {
+    entry->gpu = GpuSceneOwner(
+        new GpuScene(
+            entry->scene,  // NOLINT(cppcoreguidelines-owning-memory): owned at once
+            GpuSceneOptions{maxAnisotropy_, options.textureCompression, textureCapabilities_}),
+        GpuSceneDeleter(glWorker_.get()));
+  }
   lookup.uploadMs = uploadTimer.elapsedMs();
   lookup.entry = entry;
   slots_.push_front({key, entry});
@@ -343,6 +427,17 @@ void SceneCache::evictOverBudget() {
 void SceneCache::release(Slot evicted) {
   if (evicted.entry.use_count() != 1) return;  // still held by a caller: freed with it
   CachedScene& scene = *evicted.entry;
+  if (glWorker_) {
+    // Vertex arrays belong to this context; the rest is freed on the worker. The flush sends
+    // this context's commands that use the scene before another context deletes its objects.
+    const Stopwatch here;
+    scene.gpu->releaseVertexArrays();
+    glFlush();
+    glWorker_->post([entry = std::move(evicted.entry)]() mutable { entry.reset(); });
+    spdlog::debug("scene cache: released {} on the GL worker ({:.3f} ms here)", evicted.key,
+                  here.elapsedMs());
+    return;
+  }
   const Stopwatch gl;
   scene.gpu.reset();
   scene.hitGeometry.reset();

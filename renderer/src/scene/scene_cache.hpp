@@ -4,6 +4,7 @@
 // it alone exceeds the budget.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -15,7 +16,9 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <utility>
 
+#include "gl/gl_worker.hpp"
 #include "lgh/renderer_options.hpp"
 #include "lgh/scene_cache_stats.hpp"
 #include "lgh/task_pool.hpp"
@@ -43,9 +46,22 @@ class SceneAttachment {
   virtual std::size_t gpuBytes() const = 0;
 };
 
+// Frees a GpuScene where its GL objects may be deleted: at once on a thread whose current context
+// is in the render context's share group, else (a prefetch thread dropping a scene uploaded
+// ahead) on the GL worker. A scene with vertex arrays is only ever freed on the render thread.
+struct GpuSceneDeleter {
+  gl::Worker* worker = nullptr;  // none: always at once
+  GpuSceneDeleter() = default;
+  explicit GpuSceneDeleter(gl::Worker* glWorker) : worker(glWorker) {}
+  // NOLINTNEXTLINE(google-explicit-constructor): a std::unique_ptr<GpuScene> converts to it.
+  GpuSceneDeleter(std::default_delete<GpuScene> /*plain*/) {}
+  void operator()(GpuScene* scene) const;
+};
+using GpuSceneOwner = std::unique_ptr<GpuScene, GpuSceneDeleter>;
+
 struct CachedScene {
   Scene scene;
-  std::unique_ptr<GpuScene> gpu;
+  GpuSceneOwner gpu;
   // Built lazily, by frames that hold the entry as const: part of the cache, not of the scene.
   mutable TraceSceneSlot trace;
   mutable std::unique_ptr<SceneAttachment> hitGeometry;
@@ -59,7 +75,9 @@ struct CachedScene {
 
 class SceneCache {
  public:
-  explicit SceneCache(const RendererOptions& options);
+  // `context`: the render context, whose share group the GL worker joins (RendererOptions::
+  // glWorker); without one, uploads and releases stay on the calling thread.
+  explicit SceneCache(const RendererOptions& options, const GlContext* context = nullptr);
   ~SceneCache();
   SceneCache(const SceneCache&) = delete;
   SceneCache& operator=(const SceneCache&) = delete;
@@ -67,10 +85,11 @@ class SceneCache {
   struct Lookup {
     std::shared_ptr<CachedScene> entry;
     bool hit = false;
-    double loadMs = 0.0;  // parsing, here or on a prefetch thread
-    double uploadMs = 0.0;
-    double releaseMs = 0.0;   // freeing the scenes this miss evicted (GL, Vulkan and CPU memory)
-    bool prefetched = false;  // parsed by prefetch() ahead of this get()
+    double loadMs = 0.0;         // parsing, here or on a prefetch thread
+    double uploadMs = 0.0;       // on the calling thread (after an upload ahead: its adoption)
+    double uploadAheadMs = 0.0;  // on the GL worker, ahead of this get()
+    double releaseMs = 0.0;      // freeing the scenes this miss evicted (GL, Vulkan and CPU memory)
+    bool prefetched = false;     // parsed by prefetch() ahead of this get()
   };
   // Loads on a miss; throws lgh::Error for bad assets (nothing is cached then). The options (pose,
   // material variant, extension tolerance) are part of the key: each pose is its own entry.
@@ -102,14 +121,54 @@ class SceneCache {
 
   // Content key of a source ("" when it cannot be keyed; then it is never cached).
   std::string keyFor(const SceneSource& source, const SceneLoadOptions& options = {}) const;
+  // Whether scenes are uploaded ahead and freed on a GL worker (RendererOptions::glWorker).
+  bool hasGlWorker() const { return glWorker_ != nullptr; }
+
+  // Scenes parsed ahead are uploaded ahead while the GPU memory of those not drawn yet stays
+  // under this (their bytes are not in the cache's budget until drawn); a scene that does not
+  // fit is uploaded when drawn.
+  static constexpr std::size_t kMaxBytesUploadedAhead = std::size_t{256} << 20;
 
  private:
-  struct Parsed {
-    Scene scene;
-    double loadMs = 0.0;
-    TraceSceneSlot trace;   // built ahead, or empty
-    double buildMs = -1.0;  // the build ahead's wall time (< 0: none)
+  // GPU memory held by uploads ahead not drawn yet: reserved before an upload ahead, given back
+  // when the scene is drawn or its parse dropped.
+  class AheadReservation {
+   public:
+    AheadReservation() = default;
+    AheadReservation(std::atomic<std::size_t>* total, std::size_t bytes)
+        : total_(total), bytes_(bytes) {}
+    ~AheadReservation() { reset(); }
+    AheadReservation(AheadReservation&& other) noexcept
+        : total_(std::exchange(other.total_, nullptr)), bytes_(other.bytes_) {}
+    AheadReservation& operator=(AheadReservation&& other) noexcept {
+      if (this != &other) {
+        reset();
+        total_ = std::exchange(other.total_, nullptr);
+        bytes_ = other.bytes_;
+      }
+      return *this;
+    }
+    AheadReservation(const AheadReservation&) = delete;
+    AheadReservation& operator=(const AheadReservation&) = delete;
+    void reset() {
+      if (total_ != nullptr) total_->fetch_sub(bytes_);
+      total_ = nullptr;
+    }
+
+   private:
+    std::atomic<std::size_t>* total_ = nullptr;
+    std::size_t bytes_ = 0;
   };
+  struct Parsed {
+    std::shared_ptr<CachedScene> entry;  // the scene, its structures and upload when made ahead
+    double loadMs = 0.0;
+    double buildMs = -1.0;   // the build ahead's wall time (< 0: none)
+    double uploadMs = -1.0;  // the upload ahead's wall time on the GL worker (< 0: none)
+    AheadReservation uploadedAhead;
+  };
+  // On a prefetch thread: the parsed scene's upload on the GL worker, when its bytes fit.
+  static void uploadAhead(Parsed& parsed, gl::Worker& worker, const GpuSceneOptions& options,
+                          std::atomic<std::size_t>& aheadBytes);
   static constexpr std::size_t kMaxTrianglesBuiltAhead = 250'000;
   static TraceSceneSlot buildTraceAhead(const TraceBuilder& build, const Scene& scene);
   // In the scene parser worker when there is one (untrusted bytes never parsed here), in its
@@ -133,6 +192,9 @@ class SceneCache {
   mutable std::unordered_map<std::string, AssetKey> assetKeys_;
   void evictOverBudget();
   RendererOptions options_;
+  // Declared first: freed last, after every scene that may hand it work.
+  std::unique_ptr<gl::Worker> glWorker_;
+  std::atomic<std::size_t> uploadedAheadBytes_{0};
   std::unique_ptr<worker::SceneWorkerPool> parsers_;
   // A parse started by prefetch(); `hint`: its hint's number (prefetch() calls so far, the
   // position of its draw in the look-ahead); `laterHints`: the numbers of later hints of the same
