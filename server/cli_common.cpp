@@ -21,9 +21,10 @@ void addContextFlags(CLI::App& app, ContextFlags& flags) {
   app.add_flag("--no-frame-overlap", flags.noFrameOverlap,
                "issue each shadowed frame whole: GL waits for its shadow rays before it draws the "
                "next frame (by default the next frame's G-buffer runs while Vulkan traces)");
-  app.add_flag("--no-gl-worker", flags.noGlWorker,
-               "upload and free scenes on the render thread (by default a second GL context on a "
-               "thread of its own uploads the scenes parsed ahead and frees evicted ones)");
+  app.add_flag("--gl-worker", flags.glWorker,
+               "upload the scenes parsed ahead and free evicted ones on a second GL context, on a "
+               "thread of its own (off: the render thread does both; slower on NVIDIA's driver, "
+               "docs/BENCHMARKS.md)");
   app.add_option("--asset-root", flags.assetRoot, "folder that scene asset paths resolve inside")
       ->capture_default_str();
   app.add_option("--log-level", flags.logLevel, "trace, debug, info, warn, error, off")
@@ -38,7 +39,7 @@ RendererOptions rendererOptions(const ContextFlags& flags) {
   options.requireGpu = flags.requireGpu;
   options.glDebug = flags.glDebug;
   options.overlapShadowedFrames = !flags.noFrameOverlap;
-  options.glWorker = !flags.noGlWorker;
+  options.glWorker = flags.glWorker;
   options.assetRoot = flags.assetRoot;
   return options;
 }

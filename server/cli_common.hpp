@@ -19,12 +19,12 @@ struct ContextFlags {
   bool requireGpu = false;
   bool glDebug = false;
   bool noFrameOverlap = false;
-  bool noGlWorker = false;
+  bool glWorker = false;
   std::string assetRoot = ".";
   std::string logLevel = "warn";
 };
 
-// Adds --backend, --gpu, --require-gpu, --gl-debug, --no-frame-overlap, --no-gl-worker,
+// Adds --backend, --gpu, --require-gpu, --gl-debug, --no-frame-overlap, --gl-worker,
 // --asset-root, --log-level.
 void addContextFlags(CLI::App& app, ContextFlags& flags);
 RendererOptions rendererOptions(const ContextFlags& flags);

@@ -284,7 +284,7 @@ void addContextEnvNames(CLI::App& app) {
   app.get_option("--require-gpu")->envname("LGHD_REQUIRE_GPU")->group("GPU and context");
   app.get_option("--gl-debug")->envname("LGHD_GL_DEBUG")->group("GPU and context");
   app.get_option("--no-frame-overlap")->envname("LGHD_NO_FRAME_OVERLAP")->group("GPU and context");
-  app.get_option("--no-gl-worker")->envname("LGHD_NO_GL_WORKER")->group("GPU and context");
+  app.get_option("--gl-worker")->envname("LGHD_GL_WORKER")->group("GPU and context");
   app.get_option("--asset-root")->envname("LGHD_ASSET_ROOT")->group("GPU and context");
   app.get_option("--log-level")->envname("LGHD_LOG_LEVEL")->group("Server");
 }

@@ -63,9 +63,10 @@ struct RendererOptions {
   bool overlapShadowedFrames = true;
   // A second GL context in the render context's share group, current on a thread of its own
   // (the GL worker): scenes parsed ahead are uploaded there, and evicted scenes freed there, off
-  // the render thread (docs/ARCHITECTURE.md, "GL worker"). Off, or when the driver gives no
-  // shared context (logged), both happen on the render thread.
-  bool glWorker = true;
+  // the render thread (docs/ARCHITECTURE.md, "GL worker"). Off by default: on the H200 the
+  // render thread's GL calls slowed while the worker uploaded (docs/BENCHMARKS.md, seventh
+  // round), more than the upload it took over. A driver without shared contexts is logged.
+  bool glWorker = false;
   // Untrusted assets (paths, uploads, inline GLBs) parsed in a worker process
   // (lgh/scene_worker.hpp) rather than in this one: a parser crash or runaway then fails one load,
   // not the process. Empty executable: in this process.

@@ -443,7 +443,7 @@ void SceneCache::release(Slot evicted) {
   scene.hitGeometry.reset();
   const double glMs = gl.elapsedMs();
   const Stopwatch structures;
-  scene.trace.scene.reset();
+  releaseStructures(std::move(scene.trace.scene));
   const double structuresMs = structures.elapsedMs();
   const Stopwatch cpu;
   evicted.entry.reset();
@@ -451,6 +451,22 @@ void SceneCache::release(Slot evicted) {
       "scene cache: released {}: GL objects {:.3f} ms, acceleration structures {:.3f} ms, "
       "CPU memory {:.3f} ms",
       evicted.key, glMs, structuresMs, cpu.elapsedMs());
+}
+
+// Destroying a scene's acceleration structures is a deferred-release submission and the frees
+// of their buffers: no frame waits for it, so a thread of its own does it (Vulkan's queues are
+// submitted to under their locks, DeferredRelease has its own).
+void SceneCache::releaseStructures(std::unique_ptr<vk::TraceScene> structures) {
+  if (!structures) return;
+  try {
+    if (!structureReleaser_) structureReleaser_ = std::make_unique<TaskPool>(1);
+    structureReleaser_->submit([held = std::shared_ptr<vk::TraceScene>(
+                                    std::move(structures))]() mutable { held.reset(); });
+  } catch (const std::exception& error) {  // no thread (std::system_error), no memory
+    spdlog::warn("scene cache: acceleration structures freed on the render thread ({})",
+                 error.what());
+    structures.reset();
+  }
 }
 
 SceneCacheStats SceneCache::stats() const {

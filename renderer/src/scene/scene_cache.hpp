@@ -195,6 +195,8 @@ class SceneCache {
   // Declared first: freed last, after every scene that may hand it work.
   std::unique_ptr<gl::Worker> glWorker_;
   std::atomic<std::size_t> uploadedAheadBytes_{0};
+  // Frees evicted scenes' acceleration structures without the GL worker: made on the first.
+  std::unique_ptr<TaskPool> structureReleaser_;
   std::unique_ptr<worker::SceneWorkerPool> parsers_;
   // A parse started by prefetch(); `hint`: its hint's number (prefetch() calls so far, the
   // position of its draw in the look-ahead); `laterHints`: the numbers of later hints of the same
@@ -231,6 +233,7 @@ class SceneCache {
     std::shared_ptr<CachedScene> entry;
   };
   void release(Slot evicted);
+  void releaseStructures(std::unique_ptr<vk::TraceScene> structures);
   std::list<Slot> slots_;  // front: most recently used
   std::uint64_t hits_ = 0;
   std::uint64_t misses_ = 0;
