@@ -6,7 +6,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <optional>
+#include <regex>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -374,6 +377,42 @@ TEST_F(DaemonConfigTest, BadGpusAndContextLossHookExitWithStatus2) {
   ASSERT_TRUE(hook.result.config);
   EXPECT_EQ(hook.result.config->testContextLossGpu, 1);
   EXPECT_EQ(hook.result.config->testContextLossAfter, 4);
+}
+
+}  // namespace
+}  // namespace lghd
+
+namespace lghd {
+namespace {
+
+// Every flag `lghd --help` lists has a row of docs/DAEMON.md's configuration table naming its
+// variable ("| `--flag` | `LGHD_VARIABLE` | ..."): the docs cannot fall behind the flags.
+TEST_F(DaemonConfigTest, EveryFlagOfHelpHasARowInTheDocsTable) {
+  const Parsed parsed = parse({"--help"});
+  std::ifstream in(std::string(LGH_SOURCE_DIR) + "/docs/DAEMON.md");
+  ASSERT_TRUE(in);
+  const std::string docs((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::regex option(R"(^  (--[a-z0-9-]+)[^\n]*\(Env:(LGHD_[A-Z0-9_]+)\))");
+  std::istringstream lines(parsed.out);
+  int flags = 0;
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch match;
+    if (!std::regex_search(line, match, option)) continue;
+    ++flags;
+    // A row's first cell may name several flags ("| `--auth-token`, `--auth-token-file` |").
+    const std::string flag = "`" + match[1].str() + "`";
+    std::string rowText;
+    std::istringstream docLines(docs);
+    for (std::string docLine; std::getline(docLines, docLine);) {
+      if (docLine.rfind("| `--", 0) != 0) continue;
+      const std::size_t cellEnd = docLine.find(" | ");
+      if (docLine.substr(0, cellEnd).find(flag) != std::string::npos) rowText = docLine;
+    }
+    ASSERT_FALSE(rowText.empty()) << match[1] << " has no row in docs/DAEMON.md";
+    EXPECT_NE(rowText.find("`" + match[2].str() + "`"), std::string::npos)
+        << match[1] << "'s row does not name " << match[2] << ": " << rowText;
+  }
+  EXPECT_GE(flags, 30) << parsed.out;
 }
 
 }  // namespace
