@@ -10,9 +10,10 @@ namespace lgh::gl {
 
 Worker::Worker(std::unique_ptr<GlContext> context, const Api* renderApi)
     : context_(std::move(context)), renderApi_(renderApi) {
-  std::promise<void> started;
-  auto ready = started.get_future();
-  thread_ = std::thread([this, &started] { loop(started); });
+  // Shared with the thread, which may still be inside set_value() when this constructor returns.
+  auto started = std::make_shared<std::promise<void>>();
+  auto ready = started->get_future();
+  thread_ = std::thread([this, started] { loop(*started); });
   try {
     ready.get();
   } catch (...) {
