@@ -128,7 +128,8 @@ class EglContext final : public GlContext {
 
   // A context in `share`'s share group, with its config and attributes (EGL requires the same
   // reset notification strategy), made current later by the thread that uses it.
-  explicit EglContext(const EglContext& share, int /*tag*/)
+  struct Sharing {};
+  EglContext(const EglContext& share, Sharing /*tag*/)
       : display_(share.display_), config_(share.config_), attributes_(share.attributes_) {
     info_ = share.info_;
     info_.contextPath = share.info_.contextPath + " (shared)";
@@ -141,24 +142,20 @@ class EglContext final : public GlContext {
   ~EglContext() override {
     releaseApi();
     if (context_ != EGL_NO_CONTEXT) {
-      // Only this thread's binding of this context: destroying a shared context on the render
-      // thread must leave the render thread's own context current.
-      if (eglGetCurrentContext() == context_) {
-        eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-      }
+      // Destroying a shared context on the render thread must leave the render thread's own
+      // context current.
+      unbindIfCurrent();
       eglDestroyContext(display_, context_);
     }
     if (initialized_ && DisplayUsers::release(display_)) eglTerminate(display_);
   }
 
   std::unique_ptr<GlContext> createShared() const override {
-    return std::make_unique<EglContext>(*this, 0);
+    return std::make_unique<EglContext>(*this, Sharing{});
   }
   void doneCurrent() override {
     releaseApi();
-    if (eglGetCurrentContext() == context_) {
-      eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-    }
+    unbindIfCurrent();
     eglReleaseThread();
   }
 
@@ -179,6 +176,14 @@ class EglContext final : public GlContext {
   void loadFunctions() override { loadGl(eglProcAddress, nullptr); }
 
  private:
+  // Leaves the calling thread without a context if this one is current on it (another thread's
+  // binding, or another context of this thread, is left alone).
+  void unbindIfCurrent() {
+    if (eglGetCurrentContext() == context_) {
+      eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    }
+  }
+
   // The ways to ask for a robust context with reset notification, best first: EGL 1.5's core
   // attributes (NVIDIA's EGL accepts only these for desktop GL), then EGL_EXT_create_context_
   // robustness's (Mesa), then none (not every driver offers one).

@@ -46,7 +46,6 @@ class GpuScene {
   // On the render thread, once, for a scene from uploadShared(): makes the render context's GPU
   // queue wait for the upload's fence (the CPU does not wait) and makes the vertex arrays.
   void adopt();
-  bool adopted() const { return vertexArrays_; }
   // On the render thread: deletes the vertex arrays, so that the rest (shared objects only) may
   // be freed on another context of the share group.
   void releaseVertexArrays();

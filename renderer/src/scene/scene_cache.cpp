@@ -384,6 +384,7 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
   const Stopwatch uploadTimer;
   if (entry->gpu) {
     entry->gpu->adopt();
+    lookup.uploadedAhead = true;
     lookup.uploadAheadMs = parsed.uploadMs;
   } else {
     entry->gpu = GpuSceneOwner(

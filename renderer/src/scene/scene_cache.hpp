@@ -87,7 +87,8 @@ class SceneCache {
     bool hit = false;
     double loadMs = 0.0;         // parsing, here or on a prefetch thread
     double uploadMs = 0.0;       // on the calling thread (after an upload ahead: its adoption)
-    double uploadAheadMs = 0.0;  // on the GL worker, ahead of this get()
+    bool uploadedAhead = false;  // on the GL worker, ahead of this get()
+    double uploadAheadMs = 0.0;  // that upload's wall time
     double releaseMs = 0.0;      // freeing the scenes this miss evicted (GL, Vulkan and CPU memory)
     bool prefetched = false;     // parsed by prefetch() ahead of this get()
   };
