@@ -66,11 +66,11 @@ int ForwardBlendPass::run(const Inputs& inputs, SurfacePrograms& programs, GpuSc
   for (const GpuScene::DrawItem* item : items) {
     const Material& material = inputs.materials->at(item->material);
     const SurfaceProgramKey key = surfaceProgramKey(material, *item, true);
-    const GLuint program = programs.get(key);
-    if (prepared.insert(program).second) {
+    SurfaceProgram& program = programs.get(key);
+    if (prepared.insert(program.id()).second) {
       setSurfaceFrameUniforms(program, frame, item->topology == Topology::Points && disk);
     }
-    glUseProgram(program);
+    glUseProgram(program.id());
     bindMaterial(program, material, gpuScene, item->unlit);
     drawSurface(program, *item, material, key.displaced);
   }

@@ -74,13 +74,13 @@ void GBufferPass::drawOpaque(const Inputs& inputs, GpuScene& gpuScene,
     const Material& material = inputs.materials->at(item.material);
     if (material.alphaMode == AlphaMode::Blend) continue;  // ForwardBlendPass draws these
     const SurfaceProgramKey key = surfaceProgramKey(material, item, false);
-    const GLuint program = programs_.get(key);
-    if (prepared.insert(program).second) {
+    SurfaceProgram& program = programs_.get(key);
+    if (prepared.insert(program.id()).second) {
       setSurfaceFrameUniforms(program, frame, item.topology == Topology::Points && disk);
     }
-    if (program != currentProgram) {
-      glUseProgram(program);
-      currentProgram = program;
+    if (program.id() != currentProgram) {
+      glUseProgram(program.id());
+      currentProgram = program.id();
       currentMaterial = -2;
     }
     if (item.material != currentMaterial || item.unlit != currentUnlit) {

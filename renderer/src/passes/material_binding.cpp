@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <string_view>
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -41,24 +43,33 @@ glm::vec3 modelSpecular(const Material& m, MaterialModel model) {
 
 class Uniforms {
  public:
-  explicit Uniforms(GLuint program) : program_(program) {}
-  GLint at(const char* name) const { return glGetUniformLocation(program_, name); }
-  void set(const char* name, float v) const { glProgramUniform1f(program_, at(name), v); }
-  void set(const char* name, int v) const { glProgramUniform1i(program_, at(name), v); }
-  void set(const char* name, GLuint v) const { glProgramUniform1ui(program_, at(name), v); }
-  void set(const char* name, bool v) const { glProgramUniform1i(program_, at(name), v ? 1 : 0); }
-  void set(const char* name, const glm::vec3& v) const {
-    glProgramUniform3fv(program_, at(name), 1, glm::value_ptr(v));
+  explicit Uniforms(gl::UniformLocations& locations) : locations_(locations) {}
+  GLuint program() const { return locations_.program(); }
+  GLint at(std::string_view name) const { return locations_[name]; }
+  void set(std::string_view name, float v) const { glProgramUniform1f(program(), at(name), v); }
+  void set(std::string_view name, int v) const { glProgramUniform1i(program(), at(name), v); }
+  void set(std::string_view name, GLuint v) const { glProgramUniform1ui(program(), at(name), v); }
+  void set(std::string_view name, bool v) const {
+    glProgramUniform1i(program(), at(name), v ? 1 : 0);
   }
-  void set(const char* name, const glm::vec4& v) const {
-    glProgramUniform4fv(program_, at(name), 1, glm::value_ptr(v));
+  void set(std::string_view name, const glm::vec3& v) const {
+    glProgramUniform3fv(program(), at(name), 1, glm::value_ptr(v));
+  }
+  void set(std::string_view name, const glm::vec4& v) const {
+    glProgramUniform4fv(program(), at(name), 1, glm::value_ptr(v));
+  }
+  void set(std::string_view name, const glm::mat4& v) const {
+    glProgramUniformMatrix4fv(program(), at(name), 1, GL_FALSE, glm::value_ptr(v));
+  }
+  void set(std::string_view name, const glm::mat3& v) const {
+    glProgramUniformMatrix3fv(program(), at(name), 1, GL_FALSE, glm::value_ptr(v));
   }
 
  private:
-  GLuint program_;
+  gl::UniformLocations& locations_;
 };
 
-void bindTextures(const Uniforms& u, GLuint program, const Material& material, GpuScene& gpu) {
+void bindTextures(const Uniforms& u, const Material& material, GpuScene& gpu) {
   GLuint textureMask = 0;
   GLuint texCoord1Mask = 0;
   GLuint twoChannelMask = 0;
@@ -77,7 +88,7 @@ void bindTextures(const Uniforms& u, GLuint program, const Material& material, G
   u.set("uTextureMask", textureMask);
   u.set("uTexCoord1Mask", texCoord1Mask);
   u.set("uTwoChannelMask", twoChannelMask);
-  glProgramUniformMatrix3x2fv(program, u.at("uUvTransform"),
+  glProgramUniformMatrix3x2fv(u.program(), u.at("uUvTransform"),
                               static_cast<GLsizei>(transforms.size()), GL_FALSE,
                               glm::value_ptr(transforms[0]));
 }
@@ -129,9 +140,10 @@ SurfaceProgramKey surfaceProgramKey(const Material& material, const GpuScene::Dr
   return key;
 }
 
-void bindMaterial(GLuint program, const Material& material, GpuScene& gpuScene, bool unlit) {
-  const Uniforms u(program);
-  bindTextures(u, program, material, gpuScene);
+void bindMaterial(SurfaceProgram& program, const Material& material, GpuScene& gpuScene,
+                  bool unlit) {
+  const Uniforms u(program.uniforms);
+  bindTextures(u, material, gpuScene);
   const MaterialModel model = effectiveModel(material, unlit);
   u.set("uBaseColorFactor", material.baseColorFactor);
   u.set("uMetallicFactor", material.metallicFactor);
@@ -160,12 +172,11 @@ void bindMaterial(GLuint program, const Material& material, GpuScene& gpuScene, 
   setSurfaceDetail(u, material.surface);
 }
 
-void setSurfaceFrameUniforms(GLuint program, const SurfaceFrame& frame, bool pointDisk) {
-  const Uniforms u(program);
-  glProgramUniformMatrix4fv(program, u.at("uViewProjection"), 1, GL_FALSE,
-                            glm::value_ptr(frame.camera->viewProjection()));
+void setSurfaceFrameUniforms(SurfaceProgram& program, const SurfaceFrame& frame, bool pointDisk) {
+  const Uniforms u(program.uniforms);
+  u.set("uViewProjection", frame.camera->viewProjection());
   u.set("uCameraPosition", frame.camera->position);
-  glProgramUniform2f(program, u.at("uViewportSize"), static_cast<float>(frame.width),
+  glProgramUniform2f(program.id(), u.at("uViewportSize"), static_cast<float>(frame.width),
                      static_cast<float>(frame.height));
   u.set("uLineWidth", frame.primitives->lineWidth);
   u.set("uPointSize", frame.primitives->pointSize);
@@ -175,7 +186,7 @@ void setSurfaceFrameUniforms(GLuint program, const SurfaceFrame& frame, bool poi
   u.set("uTessellationMaxLevel", frame.maxTessellationLevel);
 }
 
-void drawSurface(GLuint program, const GpuScene::DrawItem& item, const Material& material,
+void drawSurface(SurfaceProgram& program, const GpuScene::DrawItem& item, const Material& material,
                  bool displaced) {
   // Widened lines and points are quads of either winding: never culled.
   const bool cull = item.topology == Topology::Triangles && !material.doubleSided;
@@ -187,11 +198,10 @@ void drawSurface(GLuint program, const GpuScene::DrawItem& item, const Material&
   // Mirrored instances flip the winding; keep back-face culling right for them.
   glFrontFace(glm::determinant(glm::mat3(item.world)) < 0.0F ? GL_CW : GL_CCW);
   const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(item.world));
-  glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "uWorld"), 1, GL_FALSE,
-                            glm::value_ptr(item.world));
-  glProgramUniformMatrix3fv(program, glGetUniformLocation(program, "uNormalMatrix"), 1, GL_FALSE,
-                            glm::value_ptr(normalMatrix));
-  glProgramUniform1i(program, glGetUniformLocation(program, "uHasTangents"), item.tangents ? 1 : 0);
+  const Uniforms u(program.uniforms);
+  u.set("uWorld", item.world);
+  u.set("uNormalMatrix", normalMatrix);
+  u.set("uHasTangents", item.tangents);
   glBindVertexArray(item.vertexArray);
   GLenum mode = GL_TRIANGLES;
   if (item.topology == Topology::Lines) mode = GL_LINES;
@@ -200,7 +210,10 @@ void drawSurface(GLuint program, const GpuScene::DrawItem& item, const Material&
     glPatchParameteri(GL_PATCH_VERTICES, 3);
     mode = GL_PATCHES;
   }
-  glDrawElements(mode, item.indexCount, GL_UNSIGNED_INT, nullptr);
+  const auto firstByte = static_cast<std::uintptr_t>(item.firstIndex) * sizeof(std::uint32_t);
+  glDrawElementsBaseVertex(mode, item.indexCount, GL_UNSIGNED_INT,
+                           reinterpret_cast<const void*>(firstByte),  // NOLINT: GL's offset type
+                           item.baseVertex);
 }
 
 void unbindMaterialSamplers() {

@@ -24,7 +24,8 @@ SurfaceProgramKey surfaceProgramKey(const Material& material, const GpuScene::Dr
                                     bool forward);
 
 // Sets every material uniform of `program` and binds the material's textures and samplers.
-void bindMaterial(GLuint program, const Material& material, GpuScene& gpuScene, bool unlit);
+void bindMaterial(SurfaceProgram& program, const Material& material, GpuScene& gpuScene,
+                  bool unlit);
 
 // What every surface program of a frame shares.
 struct SurfaceFrame {
@@ -36,11 +37,11 @@ struct SurfaceFrame {
   float ambient = 0.0F;
   float maxTessellationLevel = 64.0F;  // the device's GL_MAX_TESS_GEN_LEVEL
 };
-void setSurfaceFrameUniforms(GLuint program, const SurfaceFrame& frame, bool pointDisk);
+void setSurfaceFrameUniforms(SurfaceProgram& program, const SurfaceFrame& frame, bool pointDisk);
 
 // One draw item: its transforms, face culling (double-sided materials and lines and points are
 // not culled), and the draw call (GL_PATCHES when displaced).
-void drawSurface(GLuint program, const GpuScene::DrawItem& item, const Material& material,
+void drawSurface(SurfaceProgram& program, const GpuScene::DrawItem& item, const Material& material,
                  bool displaced);
 
 // Unbinds the samplers of the material slots.

@@ -7,8 +7,8 @@
 
 namespace lgh {
 
-GLuint SurfacePrograms::get(const SurfaceProgramKey& key) {
-  if (const auto it = programs_.find(key); it != programs_.end()) return it->second.id();
+SurfaceProgram& SurfacePrograms::get(const SurfaceProgramKey& key) {
+  if (const auto it = programs_.find(key); it != programs_.end()) return it->second;
   std::vector<gl::ShaderStage> stages{{GL_VERTEX_SHADER, "gbuffer.vert"}};
   std::string defines;
   if (key.features != kAllMaterialFeatures) {
@@ -28,7 +28,7 @@ GLuint SurfacePrograms::get(const SurfaceProgramKey& key) {
     stages.push_back({GL_GEOMETRY_SHADER, "gbuffer_flat.geom"});
   }
   stages.push_back({GL_FRAGMENT_SHADER, key.forward ? "forward_blend.frag" : "gbuffer.frag"});
-  return programs_.emplace(key, gl::buildProgram(stages, defines)).first->second.id();
+  return programs_.emplace(key, SurfaceProgram(gl::buildProgram(stages, defines))).first->second;
 }
 
 }  // namespace lgh

@@ -13,8 +13,10 @@
 #include <cstdint>
 #include <map>
 #include <tuple>
+#include <utility>
 
 #include "gl/gl_objects.hpp"
+#include "gl/uniform_locations.hpp"
 #include "lgh/material_settings.hpp"
 #include "scene/scene.hpp"
 
@@ -40,13 +42,23 @@ struct SurfaceProgramKey {
   }
 };
 
+// A linked variant and its uniform locations, looked up on first use.
+struct SurfaceProgram {
+  explicit SurfaceProgram(gl::Program linked)
+      : program(std::move(linked)), uniforms(program.id()) {}
+  GLuint id() const { return program.id(); }
+  gl::Program program;
+  gl::UniformLocations uniforms;
+};
+
 class SurfacePrograms {
  public:
-  // Builds the variant on first use; throws lgh::Error(Internal) with the driver's log.
-  GLuint get(const SurfaceProgramKey& key);
+  // Builds the variant on first use; throws lgh::Error(Internal) with the driver's log. The
+  // reference stays valid as long as this object.
+  SurfaceProgram& get(const SurfaceProgramKey& key);
 
  private:
-  std::map<SurfaceProgramKey, gl::Program> programs_;
+  std::map<SurfaceProgramKey, SurfaceProgram> programs_;
 };
 
 }  // namespace lgh

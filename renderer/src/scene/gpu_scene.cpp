@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 
 #include <fmt/format.h>
 
@@ -38,27 +39,22 @@ GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArr
     : scene_(scene),
       options_(options),
       capabilities_(options.capabilities ? *options.capabilities : TextureCapabilities::query()) {
-  for (const Mesh& mesh : scene.meshes) {
-    auto& gpuMesh = meshes_.emplace_back();
-    for (const auto* list : {&mesh.primitives, &mesh.linesAndPoints}) {
-      for (const Primitive& primitive : *list) uploadPrimitive(primitive, gpuMesh.emplace_back());
-    }
-  }
+  uploadGeometry(scene);
   for (const MeshInstance& instance : scene.instances) {
     if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= meshes_.size()) continue;
     const auto meshIndex = static_cast<size_t>(instance.mesh);
     const Mesh& mesh = scene.meshes[meshIndex];
-    auto& gpuMesh = meshes_[meshIndex];
+    const auto& gpuMesh = meshes_[meshIndex];
     // gpuMesh holds mesh.primitives, then mesh.linesAndPoints, in order.
     for (size_t p = 0; p < gpuMesh.size(); ++p) {
-      if (gpuMesh[p].indexCount == 0) continue;
+      const GpuPrimitive& range = gpuMesh[p];
+      if (range.indexCount == 0) continue;
       const bool triangles = p < mesh.primitives.size();
       const Primitive& primitive =
           triangles ? mesh.primitives[p] : mesh.linesAndPoints[p - mesh.primitives.size()];
-      drawItems_.push_back({0, gpuMesh[p].indexCount, primitive.material, instance.world,
-                            primitive.topology, primitive.unlit, primitive.tangents,
-                            boundsCenter(primitive, instance.world)});
-      drawPrimitives_.emplace_back(meshIndex, p);
+      drawItems_.push_back({0, range.indexCount, range.firstIndex, range.baseVertex,
+                            primitive.material, instance.world, primitive.topology, primitive.unlit,
+                            primitive.tangents, boundsCenter(primitive, instance.world)});
     }
   }
   // The materials' own textures now, so that a scene's first frame and its load time carry them.
@@ -86,48 +82,69 @@ void GpuScene::adopt() {
 }
 
 void GpuScene::makeVertexArrays() {
-  for (auto& mesh : meshes_) {
-    for (GpuPrimitive& primitive : mesh) {
-      primitive.vertexArray = gl::VertexArray();
-      bindVertexArray(primitive);
-    }
-  }
-  for (size_t i = 0; i < drawItems_.size(); ++i) {
-    const auto [mesh, p] = drawPrimitives_[i];
-    drawItems_[i].vertexArray = meshes_[mesh][p].vertexArray.id();
-  }
-  vertexArrays_ = true;
-}
-
-void GpuScene::releaseVertexArrays() {
-  for (auto& mesh : meshes_) {
-    for (GpuPrimitive& primitive : mesh) primitive.vertexArray.reset();
-  }
-  for (DrawItem& item : drawItems_) item.vertexArray = 0;
-  vertexArrays_ = false;
-}
-
-void GpuScene::uploadPrimitive(const Primitive& primitive, GpuPrimitive& gpu) {
-  const auto vertexBytes = static_cast<GLsizeiptr>(primitive.vertices.size() * sizeof(Vertex));
-  const auto indexBytes = static_cast<GLsizeiptr>(primitive.indices.size() * sizeof(std::uint32_t));
-  glNamedBufferStorage(gpu.vertices.id(), std::max<GLsizeiptr>(vertexBytes, 1),
-                       primitive.vertices.data(), 0);
-  glNamedBufferStorage(gpu.indices.id(), std::max<GLsizeiptr>(indexBytes, 1),
-                       primitive.indices.data(), 0);
-  geometryBytes_ += static_cast<std::size_t>(vertexBytes + indexBytes);
-  gpu.indexCount = static_cast<GLsizei>(primitive.indices.size());
-}
-
-void GpuScene::bindVertexArray(const GpuPrimitive& gpu) {
-  const GLuint vao = gpu.vertexArray.id();
-  glVertexArrayVertexBuffer(vao, 0, gpu.vertices.id(), 0, sizeof(Vertex));
-  glVertexArrayElementBuffer(vao, gpu.indices.id());
+  vertexArray_ = gl::VertexArray();
+  const GLuint vao = vertexArray_.id();
+  glVertexArrayVertexBuffer(vao, 0, vertices_.id(), 0, sizeof(Vertex));
+  glVertexArrayElementBuffer(vao, indices_.id());
   setAttribute(vao, 0, 3, offsetof(Vertex, position));
   setAttribute(vao, 1, 3, offsetof(Vertex, normal));
   setAttribute(vao, 2, 4, offsetof(Vertex, tangent));
   setAttribute(vao, 3, 2, offsetof(Vertex, uv0));
   setAttribute(vao, 4, 2, offsetof(Vertex, uv1));
   setAttribute(vao, 5, 4, offsetof(Vertex, color));
+  for (DrawItem& item : drawItems_) item.vertexArray = vao;
+  vertexArrays_ = true;
+}
+
+void GpuScene::releaseVertexArrays() {
+  vertexArray_.reset();
+  for (DrawItem& item : drawItems_) item.vertexArray = 0;
+  vertexArrays_ = false;
+}
+
+void GpuScene::uploadGeometry(const Scene& scene) {
+  std::size_t vertexCount = 0;
+  std::size_t indexCount = 0;
+  for (const Mesh& mesh : scene.meshes) {
+    auto& gpuMesh = meshes_.emplace_back();
+    for (const auto* list : {&mesh.primitives, &mesh.linesAndPoints}) {
+      for (const Primitive& primitive : *list) {
+        gpuMesh.push_back({static_cast<GLsizei>(primitive.indices.size()),
+                           static_cast<GLuint>(indexCount), static_cast<GLint>(vertexCount)});
+        vertexCount += primitive.vertices.size();
+        indexCount += primitive.indices.size();
+      }
+    }
+  }
+  const auto vertexBytes = static_cast<GLsizeiptr>(vertexCount * sizeof(Vertex));
+  const auto indexBytes = static_cast<GLsizeiptr>(indexCount * sizeof(std::uint32_t));
+  glNamedBufferStorage(vertices_.id(), std::max<GLsizeiptr>(vertexBytes, 1), nullptr,
+                       GL_DYNAMIC_STORAGE_BIT);
+  glNamedBufferStorage(indices_.id(), std::max<GLsizeiptr>(indexBytes, 1), nullptr,
+                       GL_DYNAMIC_STORAGE_BIT);
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    std::size_t p = 0;
+    for (const auto* list : {&mesh.primitives, &mesh.linesAndPoints}) {
+      for (const Primitive& primitive : *list) {
+        const GpuPrimitive& range = meshes_[m][p++];
+        if (!primitive.vertices.empty()) {
+          glNamedBufferSubData(
+              vertices_.id(),
+              static_cast<GLintptr>(static_cast<std::size_t>(range.baseVertex) * sizeof(Vertex)),
+              static_cast<GLsizeiptr>(primitive.vertices.size() * sizeof(Vertex)),
+              primitive.vertices.data());
+        }
+        if (!primitive.indices.empty()) {
+          glNamedBufferSubData(
+              indices_.id(), static_cast<GLintptr>(range.firstIndex * sizeof(std::uint32_t)),
+              static_cast<GLsizeiptr>(primitive.indices.size() * sizeof(std::uint32_t)),
+              primitive.indices.data());
+        }
+      }
+    }
+  }
+  geometryBytes_ = static_cast<std::size_t>(vertexBytes + indexBytes);
 }
 
 const GpuScene::UploadedImage* GpuScene::imageTexture(int image, TextureUsage usage) {

@@ -1,4 +1,5 @@
-// A Scene uploaded to GL: vertex/index buffers per primitive (triangles, lines and points),
+// A Scene uploaded to GL: one vertex buffer, one index buffer and one vertex array for all its
+// primitives (triangles, lines and points; each draw names its range and base vertex),
 // textures with mipmaps per use (sRGB colour, data, normal map, one channel; block-compressed when
 // asked or loaded so: scene/texture_upload.hpp), and sampler objects from the samplers the
 // materials ask for (glTF's, or a request's: wrap modes with a border colour, filters,
@@ -53,7 +54,9 @@ class GpuScene {
   struct DrawItem {
     GLuint vertexArray;
     GLsizei indexCount;
-    int material;  // -1: default material
+    GLuint firstIndex;  // in the scene's index buffer
+    GLint baseVertex;   // added to each index: the primitive's first vertex
+    int material;       // -1: default material
     glm::mat4 world;
     Topology topology = Topology::Triangles;
     bool unlit = false;      // lines and points without normals
@@ -90,11 +93,11 @@ class GpuScene {
   GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArraysLater later);
   void makeVertexArrays();
 
+  // Where a primitive lies in the scene's buffers.
   struct GpuPrimitive {
-    gl::VertexArray vertexArray = gl::VertexArray::empty();  // made by makeVertexArrays()
-    gl::Buffer vertices;
-    gl::Buffer indices;
     GLsizei indexCount = 0;
+    GLuint firstIndex = 0;
+    GLint baseVertex = 0;
   };
   struct UploadedImage {
     gl::Texture texture;
@@ -102,16 +105,19 @@ class GpuScene {
   };
   GLuint samplerFor(const Sampler& sampler);
   const UploadedImage* imageTexture(int image, TextureUsage usage);
-  void uploadPrimitive(const Primitive& primitive, GpuPrimitive& gpu);
-  static void bindVertexArray(const GpuPrimitive& gpu);
+  // One buffer pair for the whole scene: a new scene's allocations and its first draws'
+  // vertex-array validation were per primitive before, which on NVIDIA's driver made most of
+  // a many-part asset's upload.
+  void uploadGeometry(const Scene& scene);
 
   const Scene& scene_;
   GpuSceneOptions options_;
   TextureCapabilities capabilities_;
   std::vector<std::vector<GpuPrimitive>> meshes_;
   std::vector<DrawItem> drawItems_;
-  // The primitive of each draw item (mesh, index in meshes_), for its vertex array.
-  std::vector<std::pair<std::size_t, std::size_t>> drawPrimitives_;
+  gl::Buffer vertices_;
+  gl::Buffer indices_;
+  gl::VertexArray vertexArray_ = gl::VertexArray::empty();  // made by makeVertexArrays()
   bool vertexArrays_ = false;
   gl::Fence uploaded_;  // uploadShared()'s, until adopt()
   // By (image, kind): the kinds an upload distinguishes (without compression colour and data).
