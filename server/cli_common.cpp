@@ -25,6 +25,12 @@ void addContextFlags(CLI::App& app, ContextFlags& flags) {
                "upload the scenes parsed ahead and free evicted ones on a second GL context, on a "
                "thread of its own (off: the render thread does both; slower on NVIDIA's driver, "
                "docs/BENCHMARKS.md)");
+  app.add_option("--upload-staging-mb", flags.uploadStagingMb,
+                 "memory that prefetch threads copy parsed scenes into, so that the render thread "
+                 "uploads them as GPU copies; -1: 128 on a GPU, 0 on a software rasterizer or "
+                 "with --gl-worker; 0: none")
+      ->check(CLI::Range(-1, 65536))
+      ->capture_default_str();
   app.add_option("--asset-root", flags.assetRoot, "folder that scene asset paths resolve inside")
       ->capture_default_str();
   app.add_option("--log-level", flags.logLevel, "trace, debug, info, warn, error, off")
@@ -40,6 +46,8 @@ RendererOptions rendererOptions(const ContextFlags& flags) {
   options.glDebug = flags.glDebug;
   options.overlapShadowedFrames = !flags.noFrameOverlap;
   options.glWorker = flags.glWorker;
+  options.uploadStagingBytes =
+      flags.uploadStagingMb < 0 ? -1 : static_cast<std::int64_t>(flags.uploadStagingMb) << 20;
   options.assetRoot = flags.assetRoot;
   return options;
 }

@@ -20,12 +20,13 @@ struct ContextFlags {
   bool glDebug = false;
   bool noFrameOverlap = false;
   bool glWorker = false;
+  int uploadStagingMb = -1;
   std::string assetRoot = ".";
   std::string logLevel = "warn";
 };
 
 // Adds --backend, --gpu, --require-gpu, --gl-debug, --no-frame-overlap, --gl-worker,
-// --asset-root, --log-level.
+// --upload-staging-mb, --asset-root, --log-level.
 void addContextFlags(CLI::App& app, ContextFlags& flags);
 RendererOptions rendererOptions(const ContextFlags& flags);
 // Logs to stderr at the given level ("trace".."off").

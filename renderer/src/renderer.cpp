@@ -243,9 +243,13 @@ std::uint64_t Renderer::Impl::submit(const RenderRequest& request) {
     // Not part of "submit": the GL worker's upload of a scene parsed ahead.
     report.timings.add("upload ahead", TimingRow::Clock::Cpu,
                        lookup.hit ? 0.0 : lookup.uploadAheadMs);
-    report.decide("scene_upload", lookup.hit             ? "cached"
-                                  : lookup.uploadedAhead ? "gl_worker"
-                                                         : "render_thread");
+  }
+  if (cache.hasGlWorker() || cache.stagingBytes() > 0) {
+    const char* upload = "render_thread";
+    if (lookup.hit) upload = "cached";
+    if (lookup.uploadedAhead) upload = "gl_worker";
+    if (lookup.staged) upload = "staged";
+    report.decide("scene_upload", upload);
   }
   // Parts of "submit" spent waiting: for a frame in flight to finish (--frames-in-flight), and
   // for the scene's parse (a prefetch not done yet, or a parse of its own) besides its upload.

@@ -285,6 +285,9 @@ void addContextEnvNames(CLI::App& app) {
   app.get_option("--gl-debug")->envname("LGHD_GL_DEBUG")->group("GPU and context");
   app.get_option("--no-frame-overlap")->envname("LGHD_NO_FRAME_OVERLAP")->group("GPU and context");
   app.get_option("--gl-worker")->envname("LGHD_GL_WORKER")->group("GPU and context");
+  app.get_option("--upload-staging-mb")
+      ->envname("LGHD_UPLOAD_STAGING_MB")
+      ->group("GPU and context");
   app.get_option("--asset-root")->envname("LGHD_ASSET_ROOT")->group("GPU and context");
   app.get_option("--log-level")->envname("LGHD_LOG_LEVEL")->group("Server");
 }

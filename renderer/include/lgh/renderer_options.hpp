@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -67,6 +68,12 @@ struct RendererOptions {
   // render thread's GL calls slowed while the worker uploaded (docs/BENCHMARKS.md, seventh
   // round), more than the upload it took over. A driver without shared contexts is logged.
   bool glWorker = false;
+  // Persistently mapped memory that prefetch threads copy parsed scenes' vertices, indices and
+  // decoded pixels into, so that the render thread uploads them as GPU copies instead of copying
+  // the bytes itself (docs/ARCHITECTURE.md, "Upload staging"). -1: 128 MiB on a GPU, none on a
+  // software rasterizer (whose GPU copy is a CPU copy too) or with the GL worker; 0: none. A
+  // scene that finds no room when parsed is uploaded from its own memory.
+  std::int64_t uploadStagingBytes = -1;
   // Untrusted assets (paths, uploads, inline GLBs) parsed in a worker process
   // (lgh/scene_worker.hpp) rather than in this one: a parser crash or runaway then fails one load,
   // not the process. Empty executable: in this process.

@@ -11,6 +11,10 @@ struct SceneCacheStats {
   std::uint64_t misses = 0;
   std::size_t entries = 0;
   std::size_t bytes = 0;
+  // Upload staging memory (RendererOptions::uploadStagingBytes; 0: none) and its bytes held by
+  // scenes parsed and not uploaded yet, or uploaded and not yet copied by the GPU.
+  std::size_t stagingBytes = 0;
+  std::size_t stagingBytesInUse = 0;
 };
 
 }  // namespace lgh

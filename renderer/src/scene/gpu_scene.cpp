@@ -30,16 +30,18 @@ glm::vec3 boundsCenter(const Primitive& primitive, const glm::mat4& world) {
 
 }  // namespace
 
-GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options)
-    : GpuScene(scene, options, VertexArraysLater{}) {
+GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, const StagedScene* staged)
+    : GpuScene(scene, options, VertexArraysLater{}, staged) {
   makeVertexArrays();
 }
 
-GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArraysLater /*later*/)
+GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArraysLater /*later*/,
+                   const StagedScene* staged)
     : scene_(scene),
+      staged_(staged),
       options_(options),
       capabilities_(options.capabilities ? *options.capabilities : TextureCapabilities::query()) {
-  uploadGeometry(scene);
+  uploadGeometry(scene, staged);
   for (const MeshInstance& instance : scene.instances) {
     if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= meshes_.size()) continue;
     const auto meshIndex = static_cast<size_t>(instance.mesh);
@@ -63,6 +65,7 @@ GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArr
       texture(*slot.texture, slot.usage);
     }
   }
+  staged_ = nullptr;  // its region is retired by the caller
 }
 
 GpuScene::~GpuScene() = default;
@@ -102,7 +105,7 @@ void GpuScene::releaseVertexArrays() {
   vertexArrays_ = false;
 }
 
-void GpuScene::uploadGeometry(const Scene& scene) {
+void GpuScene::uploadGeometry(const Scene& scene, const StagedScene* staged) {
   std::size_t vertexCount = 0;
   std::size_t indexCount = 0;
   for (const Mesh& mesh : scene.meshes) {
@@ -122,6 +125,17 @@ void GpuScene::uploadGeometry(const Scene& scene) {
                        GL_DYNAMIC_STORAGE_BIT);
   glNamedBufferStorage(indices_.id(), std::max<GLsizeiptr>(indexBytes, 1), nullptr,
                        GL_DYNAMIC_STORAGE_BIT);
+  geometryBytes_ = static_cast<std::size_t>(vertexBytes + indexBytes);
+  if (staged != nullptr) {
+    // Laid out there as here (scene/staged_scene.cpp): one copy each.
+    if (vertexBytes > 0) {
+      glCopyNamedBufferSubData(staged->buffer, vertices_.id(), staged->vertices, 0, vertexBytes);
+    }
+    if (indexBytes > 0) {
+      glCopyNamedBufferSubData(staged->buffer, indices_.id(), staged->indices, 0, indexBytes);
+    }
+    return;
+  }
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];
     std::size_t p = 0;
@@ -144,7 +158,6 @@ void GpuScene::uploadGeometry(const Scene& scene) {
       }
     }
   }
-  geometryBytes_ = static_cast<std::size_t>(vertexBytes + indexBytes);
 }
 
 const GpuScene::UploadedImage* GpuScene::imageTexture(int image, TextureUsage usage) {
@@ -160,8 +173,14 @@ const GpuScene::UploadedImage* GpuScene::imageTexture(int image, TextureUsage us
       distinctUses || usage == TextureUsage::Color ? usage : TextureUsage::Data;
   const auto key = std::make_pair(image, static_cast<int>(kind));
   if (const auto it = textures_.find(key); it != textures_.end()) return &it->second;
-  UploadedTexture uploaded =
-      uploadTexture(pixels, precompressed, kind, options_.compression, capabilities_, warnings_);
+  std::optional<StagedPixels> staged;
+  if (staged_ != nullptr) {
+    if (const auto at = staged_->images.find(image); at != staged_->images.end()) {
+      staged = StagedPixels{staged_->buffer, at->second};
+    }
+  }
+  UploadedTexture uploaded = uploadTexture(pixels, precompressed, kind, options_.compression,
+                                           capabilities_, warnings_, staged ? &*staged : nullptr);
   textureBytes_ += uploaded.bytes;
   memory_.bytes += uploaded.bytes;
   memory_.uncompressedBytes += uploaded.uncompressedBytes;

@@ -20,6 +20,7 @@
 #include "gl/gl_objects.hpp"
 #include "gl/readback_buffers.hpp"
 #include "scene/scene.hpp"
+#include "scene/staged_scene.hpp"
 #include "scene/texture_upload.hpp"
 
 namespace lgh {
@@ -35,7 +36,9 @@ struct GpuSceneOptions {
 class GpuScene {
  public:
   // Keeps a reference to `scene` (its images upload on first use): the cache entry owns both.
-  GpuScene(const Scene& scene, const GpuSceneOptions& options);
+  // `staged` (may be null): the scene's bytes in staging memory, read by the GPU copies this
+  // issues; the caller retires its region after construction.
+  GpuScene(const Scene& scene, const GpuSceneOptions& options, const StagedScene* staged = nullptr);
   ~GpuScene();
   GpuScene(const GpuScene&) = delete;
   GpuScene& operator=(const GpuScene&) = delete;
@@ -90,7 +93,8 @@ class GpuScene {
 
  private:
   struct VertexArraysLater {};
-  GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArraysLater later);
+  GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArraysLater later,
+           const StagedScene* staged = nullptr);
   void makeVertexArrays();
 
   // Where a primitive lies in the scene's buffers.
@@ -108,9 +112,10 @@ class GpuScene {
   // One buffer pair for the whole scene: a new scene's allocations and its first draws'
   // vertex-array validation were per primitive before, which on NVIDIA's driver made most of
   // a many-part asset's upload.
-  void uploadGeometry(const Scene& scene);
+  void uploadGeometry(const Scene& scene, const StagedScene* staged);
 
   const Scene& scene_;
+  const StagedScene* staged_ = nullptr;  // during construction only
   GpuSceneOptions options_;
   TextureCapabilities capabilities_;
   std::vector<std::vector<GpuPrimitive>> meshes_;

@@ -54,6 +54,34 @@ std::unique_ptr<gl::Worker> makeGlWorker(const RendererOptions& options, const G
   }
 }
 
+constexpr std::int64_t kDefaultStagingBytes = std::int64_t{128} << 20;
+
+std::unique_ptr<gl::StagingMemory> makeStaging(const RendererOptions& options,
+                                               const GlContext* context, bool glWorker) {
+  std::int64_t bytes = options.uploadStagingBytes;
+  if (bytes < 0) {
+    if (context == nullptr || glWorker || context->info().softwareRenderer) {
+      spdlog::info("scene cache: no upload staging ({}): the render thread copies scenes' bytes",
+                   glWorker ? "the GL worker uploads" : "a software rasterizer's copies are CPU's");
+      return nullptr;
+    }
+    bytes = kDefaultStagingBytes;
+  }
+  if (bytes == 0) return nullptr;
+  try {
+    auto staging = std::make_unique<gl::StagingMemory>(static_cast<std::size_t>(bytes));
+    spdlog::info(
+        "scene cache: prefetch threads copy the scenes they parse into {} MiB of staging "
+        "memory; the render thread uploads them as GPU copies",
+        staging->capacity() >> 20);
+    return staging;
+  } catch (const std::exception& error) {
+    spdlog::warn("scene cache: no upload staging ({}): the render thread copies scenes' bytes",
+                 error.what());
+    return nullptr;
+  }
+}
+
 // What a scene's upload takes on the GPU, before it is made: vertices, indices and its images
 // as RGBA8 with mipmaps.
 std::size_t estimatedUploadBytes(const Scene& scene) {
@@ -76,7 +104,9 @@ std::size_t estimatedUploadBytes(const Scene& scene) {
 }  // namespace
 
 SceneCache::SceneCache(const RendererOptions& options, const GlContext* context)
-    : options_(options), glWorker_(makeGlWorker(options, context)) {
+    : options_(options),
+      glWorker_(makeGlWorker(options, context)),
+      staging_(makeStaging(options, context, glWorker_ != nullptr)) {
   if (!options_.sceneWorker.executable.empty()) {
     parsers_ = std::make_unique<worker::SceneWorkerPool>(options_.sceneWorker);
   }
@@ -236,6 +266,15 @@ void SceneCache::uploadAhead(Parsed& parsed, gl::Worker& worker, const GpuSceneO
   parsed.uploadedAhead = std::move(reservation);
 }
 
+void SceneCache::stage(Parsed& parsed, gl::StagingMemory& staging, TextureCompression compression) {
+  try {
+    parsed.staged = stageScene(parsed.entry->scene, staging, compression);
+  } catch (const std::exception& error) {  // no memory for its bookkeeping
+    spdlog::warn("scene cache: '{}' could not be staged ({}): uploaded from its own memory",
+                 parsed.entry->scene.name, error.what());
+  }
+}
+
 std::size_t SceneCache::prefetchDepth() const {
   constexpr std::size_t kPerProcess = 8;
   constexpr std::size_t kMaxDepth = 64;
@@ -320,9 +359,10 @@ void SceneCache::startPrefetch(const std::string& key, std::shared_ptr<const Sce
     auto parsing = std::make_shared<std::packaged_task<Parsed()>>(
         [rendererOptions = options_, parsers = parsers_.get(), source, options, buildTrace,
          turn = std::move(turn), glWorker = glWorker_.get(), uploadOptions,
-         aheadBytes = &uploadedAheadBytes_]() mutable {
+         aheadBytes = &uploadedAheadBytes_, staging = staging_.get()]() mutable {
           Parsed parsed = parse(rendererOptions, parsers, *source, options, std::move(turn));
           if (glWorker != nullptr) uploadAhead(parsed, *glWorker, uploadOptions, *aheadBytes);
+          if (staging != nullptr) stage(parsed, *staging, options.textureCompression);
           if (buildTrace) {
             const Stopwatch build;
             parsed.entry->trace = buildTraceAhead(buildTrace, parsed.entry->scene);
@@ -343,6 +383,7 @@ void SceneCache::startPrefetch(const std::string& key, std::shared_ptr<const Sce
 
 SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOptions& options) {
   Lookup lookup;
+  if (staging_) staging_->reclaim();
   const std::string key = keyFor(source, options);
   for (auto it = slots_.begin(); it != slots_.end(); ++it) {
     if (it->key != key) continue;
@@ -387,11 +428,23 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
     lookup.uploadedAhead = true;
     lookup.uploadAheadMs = parsed.uploadMs;
   } else {
-    entry->gpu = GpuSceneOwner(
-        new GpuScene(
-            entry->scene,  // NOLINT(cppcoreguidelines-owning-memory): owned at once
-            GpuSceneOptions{maxAnisotropy_, options.textureCompression, textureCapabilities_}),
-        GpuSceneDeleter(glWorker_.get()));
+    const StagedScene* staged = parsed.staged ? &*parsed.staged : nullptr;
+    try {
+      entry->gpu = GpuSceneOwner(
+          new GpuScene(  // NOLINT(cppcoreguidelines-owning-memory): owned at once
+              entry->scene,
+              GpuSceneOptions{maxAnisotropy_, options.textureCompression, textureCapabilities_},
+              staged),
+          GpuSceneDeleter(glWorker_.get()));
+    } catch (...) {
+      // Copies from the region may have been issued before the failure.
+      if (staged != nullptr) staging_->retire(std::move(parsed.staged->region));
+      throw;
+    }
+    if (staged != nullptr) {
+      staging_->retire(std::move(parsed.staged->region));
+      lookup.staged = true;
+    }
   }
   lookup.uploadMs = uploadTimer.elapsedMs();
   lookup.entry = entry;
@@ -476,6 +529,8 @@ SceneCacheStats SceneCache::stats() const {
   stats.misses = misses_;
   stats.entries = slots_.size();
   for (const Slot& slot : slots_) stats.bytes += slot.entry->gpuBytes();
+  stats.stagingBytes = stagingBytes();
+  stats.stagingBytesInUse = stagingBytesInUse();
   return stats;
 }
 

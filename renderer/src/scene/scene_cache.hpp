@@ -19,12 +19,14 @@
 #include <utility>
 
 #include "gl/gl_worker.hpp"
+#include "gl/staging_memory.hpp"
 #include "lgh/renderer_options.hpp"
 #include "lgh/scene_cache_stats.hpp"
 #include "lgh/task_pool.hpp"
 #include "scene/gltf/gltf_loader.hpp"
 #include "scene/gpu_scene.hpp"
 #include "scene/scene.hpp"
+#include "scene/staged_scene.hpp"
 #include "scene/worker/scene_worker_pool.hpp"
 #include "vk/shadow_tracer.hpp"
 
@@ -91,6 +93,7 @@ class SceneCache {
     double uploadAheadMs = 0.0;  // that upload's wall time
     double releaseMs = 0.0;      // freeing the scenes this miss evicted (GL, Vulkan and CPU memory)
     bool prefetched = false;     // parsed by prefetch() ahead of this get()
+    bool staged = false;         // uploaded by GPU copies from staging memory
   };
   // Loads on a miss; throws lgh::Error for bad assets (nothing is cached then). The options (pose,
   // material variant, extension tolerance) are part of the key: each pose is its own entry.
@@ -124,6 +127,9 @@ class SceneCache {
   std::string keyFor(const SceneSource& source, const SceneLoadOptions& options = {}) const;
   // Whether scenes are uploaded ahead and freed on a GL worker (RendererOptions::glWorker).
   bool hasGlWorker() const { return glWorker_ != nullptr; }
+  // The staging memory's size (0: none) and its bytes held by scenes parsed, not yet uploaded.
+  std::size_t stagingBytes() const { return staging_ ? staging_->capacity() : 0; }
+  std::size_t stagingBytesInUse() const { return staging_ ? staging_->bytesInUse() : 0; }
 
   // Scenes parsed ahead are uploaded ahead while the GPU memory of those not drawn yet stays
   // under this (their bytes are not in the cache's budget until drawn); a scene that does not
@@ -166,10 +172,13 @@ class SceneCache {
     double buildMs = -1.0;   // the build ahead's wall time (< 0: none)
     double uploadMs = -1.0;  // the upload ahead's wall time on the GL worker (< 0: none)
     AheadReservation uploadedAhead;
+    std::optional<StagedScene> staged;  // its bytes in staging memory (none: no room, or off)
   };
   // On a prefetch thread: the parsed scene's upload on the GL worker, when its bytes fit.
   static void uploadAhead(Parsed& parsed, gl::Worker& worker, const GpuSceneOptions& options,
                           std::atomic<std::size_t>& aheadBytes);
+  // On a prefetch thread: the parsed scene's bytes copied into staging memory, when they fit.
+  static void stage(Parsed& parsed, gl::StagingMemory& staging, TextureCompression compression);
   static constexpr std::size_t kMaxTrianglesBuiltAhead = 250'000;
   static TraceSceneSlot buildTraceAhead(const TraceBuilder& build, const Scene& scene);
   // In the scene parser worker when there is one (untrusted bytes never parsed here), in its
@@ -196,6 +205,9 @@ class SceneCache {
   // Declared first: freed last, after every scene that may hand it work.
   std::unique_ptr<gl::Worker> glWorker_;
   std::atomic<std::size_t> uploadedAheadBytes_{0};
+  // Where prefetch threads copy the scenes they parsed (RendererOptions::uploadStagingBytes).
+  // Declared before the prefetches, whose regions go back to it when they are dropped.
+  std::unique_ptr<gl::StagingMemory> staging_;
   // Frees evicted scenes' acceleration structures without the GL worker: made on the first.
   std::unique_ptr<TaskPool> structureReleaser_;
   std::unique_ptr<worker::SceneWorkerPool> parsers_;

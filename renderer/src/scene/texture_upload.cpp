@@ -92,15 +92,22 @@ void setLevelRange(GLuint texture, int levels) {
   glTextureParameteri(texture, GL_TEXTURE_MAX_LEVEL, levels - 1);
 }
 
-UploadedTexture uploadPlain(const Image8& image, bool srgb) {
+UploadedTexture uploadPlain(const Image8& image, bool srgb, const StagedPixels* staged) {
   UploadedTexture result;
   result.texture = gl::Texture(GL_TEXTURE_2D);
   const int levels = mipLevels(image.width, image.height);
   const GLuint id = result.texture.id();
   glTextureStorage2D(id, levels, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, image.width, image.height);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTextureSubImage2D(id, 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE,
-                      image.pixels.data());
+  if (staged != nullptr) {
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, staged->buffer);
+    glTextureSubImage2D(id, 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                        reinterpret_cast<const void*>(staged->offset));  // NOLINT: GL's offset
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  } else {
+    glTextureSubImage2D(id, 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                        image.pixels.data());
+  }
   glGenerateTextureMipmap(id);
   result.bytes = rgba8Bytes(image.width, image.height, levels);
   result.uncompressedBytes = result.bytes;
@@ -249,7 +256,7 @@ std::vector<Image8> buildMipChain(const Image8& image, bool srgb) {
 UploadedTexture uploadTexture(const Image8& image, const BlockCompressedImage* precompressed,
                               TextureUsage usage, TextureCompression compression,
                               const TextureCapabilities& capabilities,
-                              std::vector<std::string>& warnings) {
+                              std::vector<std::string>& warnings, const StagedPixels* staged) {
   const bool srgb = usage == TextureUsage::Color;
   if (precompressed != nullptr) {
     const bool colorBlocks = precompressed->format <= BlockFormat::Bc3;
@@ -273,7 +280,7 @@ UploadedTexture uploadTexture(const Image8& image, const BlockCompressedImage* p
       return uploadCompressing(image, format, srgb);
     }
   }
-  return uploadPlain(image, srgb);
+  return uploadPlain(image, srgb, staged);
 }
 
 }  // namespace lgh

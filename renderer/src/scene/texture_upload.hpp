@@ -32,13 +32,22 @@ struct TextureCapabilities {
   static TextureCapabilities query();
 };
 
-// `precompressed` (may be null): the image's blocks as loaded. Throws lgh::Error(Internal) when
-// the driver refuses a compressed upload it claims to support. Warnings (a usage the blocks
-// cannot serve, a format the device lacks) go to `warnings`.
+// The image's RGBA8 pixels in a GL buffer (scene/staged_scene.hpp): level 0 is then copied from
+// there by the GPU instead of from `image` by the calling thread.
+struct StagedPixels {
+  GLuint buffer = 0;
+  GLintptr offset = 0;
+};
+
+// `precompressed` (may be null): the image's blocks as loaded. `staged` (may be null): used when
+// the texture is uploaded as decoded RGBA8. Throws lgh::Error(Internal) when the driver refuses a
+// compressed upload it claims to support. Warnings (a usage the blocks cannot serve, a format the
+// device lacks) go to `warnings`.
 UploadedTexture uploadTexture(const Image8& image, const BlockCompressedImage* precompressed,
                               TextureUsage usage, TextureCompression compression,
                               const TextureCapabilities& capabilities,
-                              std::vector<std::string>& warnings);
+                              std::vector<std::string>& warnings,
+                              const StagedPixels* staged = nullptr);
 
 // The mip chain of `image` below level 0, halving to 1 x 1 (2x2 box filter; `srgb`: averaged in
 // linear light).

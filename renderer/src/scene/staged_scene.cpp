@@ -1,0 +1,83 @@
+#include "scene/staged_scene.hpp"
+
+#include <cstring>
+#include <set>
+
+namespace lgh {
+namespace {
+
+// The images GpuScene uploads as decoded RGBA8 when it is made: those the materials sample,
+// unless they arrived block-compressed or are compressed on upload.
+std::set<int> plainImages(const Scene& scene, TextureCompression compression) {
+  std::set<int> images;
+  if (compression != TextureCompression::None) return images;
+  for (const Material& material : scene.materials) {
+    for (const MaterialTextureSlot& slot : materialTextureSlots(material)) {
+      const int image = slot.texture->image;
+      if (image < 0 || static_cast<std::size_t>(image) >= scene.images.size()) continue;
+      const Image8& pixels = scene.images[static_cast<std::size_t>(image)];
+      if (pixels.width <= 0 || pixels.height <= 0 || pixels.channels != 4) continue;
+      if (scene.compressedImages.count(image) != 0) continue;
+      images.insert(image);
+    }
+  }
+  return images;
+}
+
+template <typename T>
+std::size_t copyAt(std::byte* at, const std::vector<T>& values) {
+  if (!values.empty()) std::memcpy(at, values.data(), values.size() * sizeof(T));
+  return values.size() * sizeof(T);
+}
+
+}  // namespace
+
+std::optional<StagedScene> stageScene(const Scene& scene, gl::StagingMemory& memory,
+                                      TextureCompression compression) {
+  std::size_t vertexBytes = 0;
+  std::size_t indexBytes = 0;
+  for (const Mesh& mesh : scene.meshes) {
+    for (const auto* list : {&mesh.primitives, &mesh.linesAndPoints}) {
+      for (const Primitive& primitive : *list) {
+        vertexBytes += primitive.vertices.size() * sizeof(Vertex);
+        indexBytes += primitive.indices.size() * sizeof(std::uint32_t);
+      }
+    }
+  }
+  const std::set<int> images = plainImages(scene, compression);
+  constexpr std::size_t kImageAlignment = 16;
+  const auto align = [](std::size_t at) {
+    return (at + kImageAlignment - 1) / kImageAlignment * kImageAlignment;
+  };
+  std::size_t total = align(vertexBytes + indexBytes);
+  for (const int image : images) {
+    total = align(total + scene.images[static_cast<size_t>(image)].pixels.size());
+  }
+  std::optional<gl::StagingMemory::Region> region = memory.reserve(total);
+  if (!region) return std::nullopt;
+
+  StagedScene staged;
+  staged.buffer = memory.buffer();
+  staged.vertices = region->offset();
+  staged.indices = region->offset() + static_cast<GLintptr>(vertexBytes);
+  std::byte* vertexAt = region->data();
+  std::byte* indexAt = region->data() + vertexBytes;
+  for (const Mesh& mesh : scene.meshes) {
+    for (const auto* list : {&mesh.primitives, &mesh.linesAndPoints}) {
+      for (const Primitive& primitive : *list) {
+        vertexAt += copyAt(vertexAt, primitive.vertices);
+        indexAt += copyAt(indexAt, primitive.indices);
+      }
+    }
+  }
+  std::size_t at = align(vertexBytes + indexBytes);
+  for (const int image : images) {
+    const auto& pixels = scene.images[static_cast<size_t>(image)].pixels;
+    staged.images.emplace(image, region->offset() + static_cast<GLintptr>(at));
+    at = align(at + copyAt(region->data() + at, pixels));
+  }
+  staged.region = std::move(*region);
+  return staged;
+}
+
+}  // namespace lgh
