@@ -30,6 +30,7 @@ void addContextFlags(CLI::App& app, ContextFlags& flags) {
                  "uploads them as GPU copies; -1: 128 on a GPU, 0 on a software rasterizer or "
                  "with --gl-worker; 0: none")
       ->check(CLI::Range(-1, 65536))
+      ->envname("LGH_UPLOAD_STAGING_MB")
       ->capture_default_str();
   app.add_option("--asset-root", flags.assetRoot, "folder that scene asset paths resolve inside")
       ->capture_default_str();

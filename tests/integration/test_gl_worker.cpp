@@ -32,6 +32,7 @@ lgh::RendererOptions options(bool glWorker) {
   lgh::RendererOptions opts = lgh::test::rendererOptions();
   opts.assetRoot = lgh::test::assimpGltfDir();
   opts.glWorker = glWorker;
+  opts.uploadStagingBytes = 0;  // the worker's own upload, and no scene_upload decision without it
   opts.sceneCacheBytes = 0;  // every new scene evicts the one before
   return opts;
 }

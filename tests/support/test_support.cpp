@@ -77,6 +77,12 @@ RendererOptions rendererOptions() {
   if (const char* backend = std::getenv("LGH_BACKEND"); backend != nullptr && *backend != 0) {
     options.backend = parseContextBackend(backend);
   }
+  // Upload staging is off on a software rasterizer unless asked for: scripts/run-tests asks for
+  // it in one pass, so that the suite runs the GPU's default upload path too.
+  if (const char* staging = std::getenv("LGH_UPLOAD_STAGING_MB");
+      staging != nullptr && *staging != 0) {
+    options.uploadStagingBytes = std::stoll(staging) << 20;
+  }
   return options;
 }
 

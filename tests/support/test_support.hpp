@@ -23,7 +23,8 @@ std::filesystem::path assimpGltfDir();
 
 // Renderer options for in-process renderers: the context path comes from LGH_BACKEND when set,
 // as it does for lghd, lgh-render and lgh-bench, so the whole suite runs on any path
-// (scripts/run-tests runs it again with LGH_BACKEND=osmesa).
+// (scripts/run-tests runs it again with LGH_BACKEND=osmesa); the upload staging memory from
+// LGH_UPLOAD_STAGING_MB (MiB) likewise.
 RendererOptions rendererOptions();
 
 // A binary glTF (GLB) of one mesh of triangles, no normals (the loader computes flat ones), one
