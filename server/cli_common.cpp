@@ -26,9 +26,9 @@ void addContextFlags(CLI::App& app, ContextFlags& flags) {
                "thread of its own (off: the render thread does both; slower on NVIDIA's driver, "
                "docs/BENCHMARKS.md)");
   app.add_option("--upload-staging-mb", flags.uploadStagingMb,
-                 "memory that prefetch threads copy parsed scenes into, so that the render thread "
-                 "uploads them as GPU copies; -1: 128 on a GPU, 0 on a software rasterizer or "
-                 "with --gl-worker; 0: none")
+                 "memory that prefetch threads copy parsed scenes of 1 MiB or more into, so that "
+                 "the render thread uploads them as GPU copies; -1: 128 on a GPU, 0 on a software "
+                 "rasterizer or with --gl-worker; 0: none")
       ->check(CLI::Range(-1, 65536))
       ->envname("LGH_UPLOAD_STAGING_MB")
       ->capture_default_str();

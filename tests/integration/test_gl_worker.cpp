@@ -33,7 +33,7 @@ lgh::RendererOptions options(bool glWorker) {
   opts.assetRoot = lgh::test::assimpGltfDir();
   opts.glWorker = glWorker;
   opts.uploadStagingBytes = 0;  // the worker's own upload, and no scene_upload decision without it
-  opts.sceneCacheBytes = 0;  // every new scene evicts the one before
+  opts.sceneCacheBytes = 0;     // every new scene evicts the one before
   return opts;
 }
 

@@ -101,7 +101,8 @@ lgh::RendererOptions options(std::int64_t stagingBytes) {
   lgh::RendererOptions opts = lgh::test::rendererOptions();
   opts.assetRoot = lgh::test::assimpGltfDir();
   opts.uploadStagingBytes = stagingBytes;
-  opts.sceneCacheBytes = 0;  // every new scene evicts the one before
+  opts.uploadStagingMinBytes = 0;  // every scene parsed ahead, however small
+  opts.sceneCacheBytes = 0;        // every new scene evicts the one before
   return opts;
 }
 
@@ -203,6 +204,20 @@ TEST(UploadStaging, ASceneLargerThanTheStagingMemoryIsUploadedFromItsOwnMemory) 
   for (std::size_t i = 0; i < results.size(); ++i) {
     EXPECT_EQ(pixelBytes(results[i]), pixelBytes(own[i])) << frames[i].dump();
   }
+}
+
+TEST(UploadStaging, ScenesBelowTheThresholdAreUploadedFromTheirOwnMemory) {
+  const std::vector<json> frames = {
+      thumbnail("BoxTextured-glTF/BoxTextured.gltf", false),
+      thumbnail("2CylinderEngine-glTF-Binary/2CylinderEngine.glb", false)};
+  lgh::RendererOptions opts = options(64LL << 20);
+  opts.uploadStagingMinBytes = std::size_t{1} << 20;  // the default: BoxTextured is 0.3 MB
+  EXPECT_EQ(opts.uploadStagingMinBytes, lgh::RendererOptions{}.uploadStagingMinBytes);
+  lgh::Renderer renderer(opts);
+  const auto results = renderAll(renderer, frames);
+  ASSERT_EQ(results.size(), 2U);
+  EXPECT_EQ(uploadOf(results[0]), "render_thread");
+  EXPECT_EQ(uploadOf(results[1]), "staged");
 }
 
 TEST(UploadStaging, StagedBytesAreHeldUntilTheirScenesAreDrawnOrTheRendererGoes) {

@@ -74,6 +74,11 @@ struct RendererOptions {
   // software rasterizer (whose GPU copy is a CPU copy too) or with the GL worker; 0: none. A
   // scene that finds no room when parsed is uploaded from its own memory.
   std::int64_t uploadStagingBytes = -1;
+  // Scenes smaller than this are uploaded from their own memory even with staging: on the H200 a
+  // scene uploaded by GPU copies cost its first draws about 0.4 ms more whatever its size (the
+  // G-buffer pass's issue), which only scenes of about a megabyte or more win back
+  // (docs/BENCHMARKS.md, eighth round).
+  std::size_t uploadStagingMinBytes = std::size_t{1} << 20;
   // Untrusted assets (paths, uploads, inline GLBs) parsed in a worker process
   // (lgh/scene_worker.hpp) rather than in this one: a parser crash or runaway then fails one load,
   // not the process. Empty executable: in this process.

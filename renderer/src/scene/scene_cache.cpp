@@ -71,9 +71,9 @@ std::unique_ptr<gl::StagingMemory> makeStaging(const RendererOptions& options,
   try {
     auto staging = std::make_unique<gl::StagingMemory>(static_cast<std::size_t>(bytes));
     spdlog::info(
-        "scene cache: prefetch threads copy the scenes they parse into {} MiB of staging "
-        "memory; the render thread uploads them as GPU copies",
-        staging->capacity() >> 20);
+        "scene cache: prefetch threads copy the scenes they parse of {} KiB or more into {} MiB "
+        "of staging memory; the render thread uploads them as GPU copies",
+        options.uploadStagingMinBytes >> 10, staging->capacity() >> 20);
     return staging;
   } catch (const std::exception& error) {
     spdlog::warn("scene cache: no upload staging ({}): the render thread copies scenes' bytes",
@@ -266,9 +266,10 @@ void SceneCache::uploadAhead(Parsed& parsed, gl::Worker& worker, const GpuSceneO
   parsed.uploadedAhead = std::move(reservation);
 }
 
-void SceneCache::stage(Parsed& parsed, gl::StagingMemory& staging, TextureCompression compression) {
+void SceneCache::stage(Parsed& parsed, gl::StagingMemory& staging, TextureCompression compression,
+                       std::size_t minBytes) {
   try {
-    parsed.staged = stageScene(parsed.entry->scene, staging, compression);
+    parsed.staged = stageScene(parsed.entry->scene, staging, compression, minBytes);
   } catch (const std::exception& error) {  // no memory for its bookkeeping
     spdlog::warn("scene cache: '{}' could not be staged ({}): uploaded from its own memory",
                  parsed.entry->scene.name, error.what());
@@ -362,7 +363,10 @@ void SceneCache::startPrefetch(const std::string& key, std::shared_ptr<const Sce
          aheadBytes = &uploadedAheadBytes_, staging = staging_.get()]() mutable {
           Parsed parsed = parse(rendererOptions, parsers, *source, options, std::move(turn));
           if (glWorker != nullptr) uploadAhead(parsed, *glWorker, uploadOptions, *aheadBytes);
-          if (staging != nullptr) stage(parsed, *staging, options.textureCompression);
+          if (staging != nullptr) {
+            stage(parsed, *staging, options.textureCompression,
+                  rendererOptions.uploadStagingMinBytes);
+          }
           if (buildTrace) {
             const Stopwatch build;
             parsed.entry->trace = buildTraceAhead(buildTrace, parsed.entry->scene);

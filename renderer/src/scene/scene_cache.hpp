@@ -178,7 +178,8 @@ class SceneCache {
   static void uploadAhead(Parsed& parsed, gl::Worker& worker, const GpuSceneOptions& options,
                           std::atomic<std::size_t>& aheadBytes);
   // On a prefetch thread: the parsed scene's bytes copied into staging memory, when they fit.
-  static void stage(Parsed& parsed, gl::StagingMemory& staging, TextureCompression compression);
+  static void stage(Parsed& parsed, gl::StagingMemory& staging, TextureCompression compression,
+                    std::size_t minBytes);
   static constexpr std::size_t kMaxTrianglesBuiltAhead = 250'000;
   static TraceSceneSlot buildTraceAhead(const TraceBuilder& build, const Scene& scene);
   // In the scene parser worker when there is one (untrusted bytes never parsed here), in its

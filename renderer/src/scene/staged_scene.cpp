@@ -33,7 +33,7 @@ std::size_t copyAt(std::byte* at, const std::vector<T>& values) {
 }  // namespace
 
 std::optional<StagedScene> stageScene(const Scene& scene, gl::StagingMemory& memory,
-                                      TextureCompression compression) {
+                                      TextureCompression compression, std::size_t minBytes) {
   std::size_t vertexBytes = 0;
   std::size_t indexBytes = 0;
   for (const Mesh& mesh : scene.meshes) {
@@ -53,6 +53,7 @@ std::optional<StagedScene> stageScene(const Scene& scene, gl::StagingMemory& mem
   for (const int image : images) {
     total = align(total + scene.images[static_cast<size_t>(image)].pixels.size());
   }
+  if (total < minBytes) return std::nullopt;
   std::optional<gl::StagingMemory::Region> region = memory.reserve(total);
   if (!region) return std::nullopt;
 

@@ -22,9 +22,9 @@ struct StagedScene {
   std::map<int, GLintptr> images;  // by index into Scene::images
 };
 
-// On any thread. Nothing when the memory has no span that large: the scene is uploaded from its
-// own bytes then.
+// On any thread. Nothing when the scene's bytes are fewer than `minBytes`, or when the memory has
+// no span that large: the scene is uploaded from its own bytes then.
 std::optional<StagedScene> stageScene(const Scene& scene, gl::StagingMemory& memory,
-                                      TextureCompression compression);
+                                      TextureCompression compression, std::size_t minBytes = 0);
 
 }  // namespace lgh
