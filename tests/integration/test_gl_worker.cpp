@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "context/gl_context.hpp"
+#include "frame_helpers.hpp"
 #include "gl/gl_objects.hpp"
 #include "gl/gl_worker.hpp"
 #include "gl/readback_buffers.hpp"
@@ -27,6 +28,9 @@
 namespace {
 
 using json = nlohmann::json;
+using lgh::test::pixelBytes;
+using lgh::test::renderHintedFirst;
+using lgh::test::thumbnailRequest;
 
 lgh::RendererOptions options(bool glWorker) {
   lgh::RendererOptions opts = lgh::test::rendererOptions();
@@ -37,12 +41,6 @@ lgh::RendererOptions options(bool glWorker) {
   return opts;
 }
 
-json thumbnail(const std::string& asset, bool shadows) {
-  return {{"scene", {{"asset", asset}}},
-          {"settings", {{"shadows", shadows ? "on" : "off"}}},
-          {"output", {{"width", 48}, {"height", 40}, {"format", "png"}}}};
-}
-
 // Textured, untextured, many primitives, and one repeated after others.
 const std::vector<std::string>& assets() {
   static const std::vector<std::string> list = {
@@ -50,25 +48,6 @@ const std::vector<std::string>& assets() {
       "ClearCoat-glTF/ClearCoatTest.gltf", "2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
       "BoxTextured-glTF/BoxTextured.gltf"};
   return list;
-}
-
-// Each frame hinted before any is submitted, as the daemon's batches do.
-std::vector<lgh::RenderResult> renderAll(lgh::Renderer& renderer, const std::vector<json>& frames) {
-  std::vector<lgh::RenderRequest> requests;
-  requests.reserve(frames.size());
-  for (const json& frame : frames) requests.push_back(lgh::parseRenderRequest(frame));
-  for (const lgh::RenderRequest& request : requests) renderer.prefetch(request);
-  for (const lgh::RenderRequest& request : requests) renderer.submit(request);
-  std::vector<lgh::RenderResult> results;
-  while (std::optional<lgh::RenderResult> result = renderer.finish(true)) {
-    results.push_back(std::move(*result));
-  }
-  return results;
-}
-
-std::vector<std::uint8_t> pixelBytes(const lgh::RenderResult& result) {
-  const std::uint8_t* data = result.pixels.data();
-  return {data, data + result.pixels.size()};
 }
 
 std::array<std::int64_t, 2> liveBuffersAndTextures() {
@@ -125,13 +104,13 @@ TEST(GlWorker, TheRenderContextReadsWhatTheWorkerUploaded) {
 TEST(GlWorker, ScenesUploadedAheadDrawAsScenesUploadedOnTheRenderThread) {
   std::vector<json> frames;
   for (const std::string& asset : assets()) {
-    frames.push_back(thumbnail(asset, true));
-    frames.push_back(thumbnail(asset, false));  // the same scene, drawn again at once
+    frames.push_back(thumbnailRequest(asset, true));
+    frames.push_back(thumbnailRequest(asset, false));  // the same scene, drawn again at once
   }
   lgh::Renderer onWorker(options(true));
   lgh::Renderer onRenderThread(options(false));
-  const auto ahead = renderAll(onWorker, frames);
-  const auto here = renderAll(onRenderThread, frames);
+  const auto ahead = renderHintedFirst(onWorker, frames);
+  const auto here = renderHintedFirst(onRenderThread, frames);
   ASSERT_EQ(ahead.size(), frames.size());
   ASSERT_EQ(here.size(), frames.size());
   int uploadedOnWorker = 0;
@@ -161,17 +140,17 @@ TEST(GlWorker, EvictedScenesAndUploadsAheadNeverDrawnAreFreed) {
   {
     lgh::Renderer renderer(options(true));
     std::vector<json> frames;
-    for (const std::string& asset : assets()) frames.push_back(thumbnail(asset, true));
+    for (const std::string& asset : assets()) frames.push_back(thumbnailRequest(asset, true));
     // The same frames twice: the frames' own objects (targets, ray and read-back buffers) are
     // made by the first run; both end with the cache holding assets().back()'s scene alone.
-    renderAll(renderer, frames);
+    renderHintedFirst(renderer, frames);
     const std::array<std::int64_t, 2> afterFirst = settleAt(liveBuffersAndTextures());
-    renderAll(renderer, frames);
+    renderHintedFirst(renderer, frames);
     EXPECT_EQ(settleAt(afterFirst), afterFirst)
         << "every evicted scene's buffers and textures were freed on the worker";
     // Hinted, parsed and uploaded ahead, never drawn: freed with the renderer.
     for (const std::string& asset : assets()) {
-      renderer.prefetch(lgh::parseRenderRequest(thumbnail(asset, false)));
+      renderer.prefetch(lgh::parseRenderRequest(thumbnailRequest(asset, false)));
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }

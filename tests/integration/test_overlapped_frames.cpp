@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "frame_helpers.hpp"
 #include "lgh/base64.hpp"
 #include "lgh/error.hpp"
 #include "lgh/renderer.hpp"
@@ -24,6 +25,7 @@
 namespace {
 
 using json = nlohmann::json;
+using lgh::test::pixelBytes;
 
 lgh::RendererOptions options(bool overlap) {
   lgh::RendererOptions opts = lgh::test::rendererOptions();
@@ -92,11 +94,6 @@ std::vector<lgh::RenderResult> submitAll(lgh::Renderer& renderer, const std::vec
     EXPECT_EQ(results[i].frameId, ids[i]) << "frames come back in submission order";
   }
   return results;
-}
-
-std::vector<std::uint8_t> pixelBytes(const lgh::RenderResult& result) {
-  const std::uint8_t* data = result.pixels.data();
-  return {data, data + result.pixels.size()};
 }
 
 TEST(OverlappedFrames, SplitFramesGiveThePixelsOfWholeFrames) {

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "context/gl_context.hpp"
+#include "frame_helpers.hpp"
 #include "gl/gl_objects.hpp"
 #include "gl/staging_memory.hpp"
 #include "lgh/renderer.hpp"
@@ -28,6 +29,9 @@ namespace {
 
 using json = nlohmann::json;
 using lgh::gl::StagingMemory;
+using lgh::test::pixelBytes;
+using lgh::test::renderHintedFirst;
+using lgh::test::thumbnailRequest;
 constexpr std::size_t kAlign = StagingMemory::kAlignment;
 
 TEST(StagingMemory, SpansAreAlignedMergedWhenGivenBackAndRefusedWhenTheyDoNotFit) {
@@ -106,12 +110,6 @@ lgh::RendererOptions options(std::int64_t stagingBytes) {
   return opts;
 }
 
-json thumbnail(const std::string& asset, bool shadows) {
-  return {{"scene", {{"asset", asset}}},
-          {"settings", {{"shadows", shadows ? "on" : "off"}}},
-          {"output", {{"width", 48}, {"height", 40}, {"format", "png"}}}};
-}
-
 // Textured (colour and data uses of one image), untextured, many primitives (2CylinderEngine:
 // 4.9 MB of vertices and indices), lines and points, and one repeated after others.
 const std::vector<std::string>& assets() {
@@ -125,25 +123,6 @@ const std::vector<std::string>& assets() {
   return list;
 }
 
-// Each frame hinted before any is submitted, as the daemon's batches do.
-std::vector<lgh::RenderResult> renderAll(lgh::Renderer& renderer, const std::vector<json>& frames) {
-  std::vector<lgh::RenderRequest> requests;
-  requests.reserve(frames.size());
-  for (const json& frame : frames) requests.push_back(lgh::parseRenderRequest(frame));
-  for (const lgh::RenderRequest& request : requests) renderer.prefetch(request);
-  for (const lgh::RenderRequest& request : requests) renderer.submit(request);
-  std::vector<lgh::RenderResult> results;
-  while (std::optional<lgh::RenderResult> result = renderer.finish(true)) {
-    results.push_back(std::move(*result));
-  }
-  return results;
-}
-
-std::vector<std::uint8_t> pixelBytes(const lgh::RenderResult& result) {
-  const std::uint8_t* data = result.pixels.data();
-  return {data, data + result.pixels.size()};
-}
-
 std::string uploadOf(const lgh::RenderResult& result) {
   const auto found = result.decisions.find("scene_upload");
   return found == result.decisions.end() ? "(none)" : found->second;
@@ -152,15 +131,15 @@ std::string uploadOf(const lgh::RenderResult& result) {
 TEST(UploadStaging, StagedScenesDrawAsScenesUploadedFromTheirOwnMemory) {
   std::vector<json> frames;
   for (const std::string& asset : assets()) {
-    frames.push_back(thumbnail(asset, true));
-    frames.push_back(thumbnail(asset, false));  // the same scene, drawn again at once
+    frames.push_back(thumbnailRequest(asset, true));
+    frames.push_back(thumbnailRequest(asset, false));  // the same scene, drawn again at once
   }
   lgh::Renderer staging(options(64LL << 20));
   lgh::Renderer plain(options(0));
   EXPECT_EQ(staging.sceneCacheStats().stagingBytes, std::size_t{64} << 20);
   EXPECT_EQ(plain.sceneCacheStats().stagingBytes, 0U);
-  const auto staged = renderAll(staging, frames);
-  const auto own = renderAll(plain, frames);
+  const auto staged = renderHintedFirst(staging, frames);
+  const auto own = renderHintedFirst(plain, frames);
   ASSERT_EQ(staged.size(), frames.size());
   ASSERT_EQ(own.size(), frames.size());
   int stagedUploads = 0;
@@ -181,22 +160,22 @@ TEST(UploadStaging, StagedScenesDrawAsScenesUploadedFromTheirOwnMemory) {
   }
   EXPECT_GE(stagedUploads, 3);
   // The last frame's upload may still be retired: the next lookup reclaims it.
-  renderAll(staging, {thumbnail(assets().front(), false)});
+  renderHintedFirst(staging, {thumbnailRequest(assets().front(), false)});
   const auto stats = staging.sceneCacheStats();
   EXPECT_LE(stats.stagingBytesInUse, stats.stagingBytes);
-  renderAll(staging, {thumbnail(assets().back(), false)});
+  renderHintedFirst(staging, {thumbnailRequest(assets().back(), false)});
   EXPECT_EQ(staging.sceneCacheStats().stagingBytesInUse, 0U)
       << "every staged byte given back once its copies were done";
 }
 
 TEST(UploadStaging, ASceneLargerThanTheStagingMemoryIsUploadedFromItsOwnMemory) {
   const std::vector<json> frames = {
-      thumbnail("BoxTextured-glTF/BoxTextured.gltf", false),
-      thumbnail("2CylinderEngine-glTF-Binary/2CylinderEngine.glb", false)};
+      thumbnailRequest("BoxTextured-glTF/BoxTextured.gltf", false),
+      thumbnailRequest("2CylinderEngine-glTF-Binary/2CylinderEngine.glb", false)};
   lgh::Renderer small(options(1LL << 20));  // 2CylinderEngine needs 4.9 MB
   lgh::Renderer plain(options(0));
-  const auto results = renderAll(small, frames);
-  const auto own = renderAll(plain, frames);
+  const auto results = renderHintedFirst(small, frames);
+  const auto own = renderHintedFirst(plain, frames);
   ASSERT_EQ(results.size(), 2U);
   ASSERT_EQ(own.size(), 2U);
   EXPECT_EQ(uploadOf(results[0]), "staged");
@@ -208,13 +187,13 @@ TEST(UploadStaging, ASceneLargerThanTheStagingMemoryIsUploadedFromItsOwnMemory) 
 
 TEST(UploadStaging, ScenesBelowTheThresholdAreUploadedFromTheirOwnMemory) {
   const std::vector<json> frames = {
-      thumbnail("BoxTextured-glTF/BoxTextured.gltf", false),
-      thumbnail("2CylinderEngine-glTF-Binary/2CylinderEngine.glb", false)};
+      thumbnailRequest("BoxTextured-glTF/BoxTextured.gltf", false),
+      thumbnailRequest("2CylinderEngine-glTF-Binary/2CylinderEngine.glb", false)};
   lgh::RendererOptions opts = options(64LL << 20);
   opts.uploadStagingMinBytes = std::size_t{1} << 20;  // the default: BoxTextured is 0.3 MB
   EXPECT_EQ(opts.uploadStagingMinBytes, lgh::RendererOptions{}.uploadStagingMinBytes);
   lgh::Renderer renderer(opts);
-  const auto results = renderAll(renderer, frames);
+  const auto results = renderHintedFirst(renderer, frames);
   ASSERT_EQ(results.size(), 2U);
   EXPECT_EQ(uploadOf(results[0]), "render_thread");
   EXPECT_EQ(uploadOf(results[1]), "staged");
@@ -227,7 +206,7 @@ TEST(UploadStaging, StagedBytesAreHeldUntilTheirScenesAreDrawnOrTheRendererGoes)
   {
     lgh::Renderer renderer(options(64LL << 20));
     for (const std::string& asset : hinted) {
-      renderer.prefetch(lgh::parseRenderRequest(thumbnail(asset, false)));
+      renderer.prefetch(lgh::parseRenderRequest(thumbnailRequest(asset, false)));
     }
     const auto giveUp = std::chrono::steady_clock::now() + std::chrono::seconds(20);
     while (renderer.sceneCacheStats().stagingBytesInUse == 0 &&
@@ -237,16 +216,16 @@ TEST(UploadStaging, StagedBytesAreHeldUntilTheirScenesAreDrawnOrTheRendererGoes)
     EXPECT_GT(renderer.sceneCacheStats().stagingBytesInUse, 0U) << "staged when parsed";
     // Drawn in hint order, each from its parse ahead; then the last again, from the cache.
     for (const std::string& asset : hinted) {
-      renderer.submit(lgh::parseRenderRequest(thumbnail(asset, false)));
+      renderer.submit(lgh::parseRenderRequest(thumbnailRequest(asset, false)));
     }
-    renderer.submit(lgh::parseRenderRequest(thumbnail(hinted.back(), true)));
+    renderer.submit(lgh::parseRenderRequest(thumbnailRequest(hinted.back(), true)));
     int frames = 0;
     while (std::optional<lgh::RenderResult> result = renderer.finish(true)) {
       EXPECT_EQ(uploadOf(*result), frames < 3 ? "staged" : "cached") << frames;
       ++frames;
     }
     EXPECT_EQ(frames, 4);
-    renderer.submit(lgh::parseRenderRequest(thumbnail(hinted.back(), false)));
+    renderer.submit(lgh::parseRenderRequest(thumbnailRequest(hinted.back(), false)));
     ASSERT_TRUE(renderer.finish(true));
     EXPECT_EQ(renderer.sceneCacheStats().stagingBytesInUse, 0U)
         << "every staged byte given back once its copies were done";
@@ -254,7 +233,7 @@ TEST(UploadStaging, StagedBytesAreHeldUntilTheirScenesAreDrawnOrTheRendererGoes)
   // Scenes staged and never drawn go back before the staging memory itself is freed.
   lgh::Renderer renderer(options(64LL << 20));
   for (const std::string& asset : hinted) {
-    renderer.prefetch(lgh::parseRenderRequest(thumbnail(asset, false)));
+    renderer.prefetch(lgh::parseRenderRequest(thumbnailRequest(asset, false)));
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
 }

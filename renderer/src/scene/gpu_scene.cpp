@@ -38,34 +38,27 @@ GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, const Sta
 GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArraysLater /*later*/,
                    const StagedScene* staged)
     : scene_(scene),
-      staged_(staged),
       options_(options),
       capabilities_(options.capabilities ? *options.capabilities : TextureCapabilities::query()) {
-  uploadGeometry(scene, staged);
+  const GeometryLayout layout = geometryLayout(scene);
+  uploadGeometry(scene, layout, staged);
   for (const MeshInstance& instance : scene.instances) {
-    if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= meshes_.size()) continue;
-    const auto meshIndex = static_cast<size_t>(instance.mesh);
-    const Mesh& mesh = scene.meshes[meshIndex];
-    const auto& gpuMesh = meshes_[meshIndex];
-    // gpuMesh holds mesh.primitives, then mesh.linesAndPoints, in order.
-    for (size_t p = 0; p < gpuMesh.size(); ++p) {
-      const GpuPrimitive& range = gpuMesh[p];
-      if (range.indexCount == 0) continue;
-      const bool triangles = p < mesh.primitives.size();
-      const Primitive& primitive =
-          triangles ? mesh.primitives[p] : mesh.linesAndPoints[p - mesh.primitives.size()];
-      drawItems_.push_back({0, range.indexCount, range.firstIndex, range.baseVertex,
+    if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= scene.meshes.size()) continue;
+    forEachPrimitive(scene, layout, static_cast<size_t>(instance.mesh),
+                     [&](const Primitive& primitive, const PrimitiveRange& range) {
+                       if (range.indexCount == 0) return;
+                       drawItems_.push_back(
+                           {0, range.indexCount, range.firstIndex, range.baseVertex,
                             primitive.material, instance.world, primitive.topology, primitive.unlit,
                             primitive.tangents, boundsCenter(primitive, instance.world)});
-    }
+                     });
   }
   // The materials' own textures now, so that a scene's first frame and its load time carry them.
   for (const Material& material : scene.materials) {
     for (const MaterialTextureSlot& slot : materialTextureSlots(material)) {
-      texture(*slot.texture, slot.usage);
+      texture(*slot.texture, slot.usage, staged);
     }
   }
-  staged_ = nullptr;  // its region is retired by the caller
 }
 
 GpuScene::~GpuScene() = default;
@@ -105,29 +98,17 @@ void GpuScene::releaseVertexArrays() {
   vertexArrays_ = false;
 }
 
-void GpuScene::uploadGeometry(const Scene& scene, const StagedScene* staged) {
-  std::size_t vertexCount = 0;
-  std::size_t indexCount = 0;
-  for (const Mesh& mesh : scene.meshes) {
-    auto& gpuMesh = meshes_.emplace_back();
-    for (const auto* list : {&mesh.primitives, &mesh.linesAndPoints}) {
-      for (const Primitive& primitive : *list) {
-        gpuMesh.push_back({static_cast<GLsizei>(primitive.indices.size()),
-                           static_cast<GLuint>(indexCount), static_cast<GLint>(vertexCount)});
-        vertexCount += primitive.vertices.size();
-        indexCount += primitive.indices.size();
-      }
-    }
-  }
-  const auto vertexBytes = static_cast<GLsizeiptr>(vertexCount * sizeof(Vertex));
-  const auto indexBytes = static_cast<GLsizeiptr>(indexCount * sizeof(std::uint32_t));
+void GpuScene::uploadGeometry(const Scene& scene, const GeometryLayout& layout,
+                              const StagedScene* staged) {
+  const auto vertexBytes = static_cast<GLsizeiptr>(layout.vertexBytes());
+  const auto indexBytes = static_cast<GLsizeiptr>(layout.indexBytes());
   glNamedBufferStorage(vertices_.id(), std::max<GLsizeiptr>(vertexBytes, 1), nullptr,
                        GL_DYNAMIC_STORAGE_BIT);
   glNamedBufferStorage(indices_.id(), std::max<GLsizeiptr>(indexBytes, 1), nullptr,
                        GL_DYNAMIC_STORAGE_BIT);
   geometryBytes_ = static_cast<std::size_t>(vertexBytes + indexBytes);
   if (staged != nullptr) {
-    // Laid out there as here (scene/staged_scene.cpp): one copy each.
+    // Laid out there as here (scene/geometry_layout.hpp): one copy each.
     if (vertexBytes > 0) {
       glCopyNamedBufferSubData(staged->buffer, vertices_.id(), staged->vertices, 0, vertexBytes);
     }
@@ -136,31 +117,28 @@ void GpuScene::uploadGeometry(const Scene& scene, const StagedScene* staged) {
     }
     return;
   }
-  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-    const Mesh& mesh = scene.meshes[m];
-    std::size_t p = 0;
-    for (const auto* list : {&mesh.primitives, &mesh.linesAndPoints}) {
-      for (const Primitive& primitive : *list) {
-        const GpuPrimitive& range = meshes_[m][p++];
-        if (!primitive.vertices.empty()) {
-          glNamedBufferSubData(
-              vertices_.id(),
-              static_cast<GLintptr>(static_cast<std::size_t>(range.baseVertex) * sizeof(Vertex)),
-              static_cast<GLsizeiptr>(primitive.vertices.size() * sizeof(Vertex)),
-              primitive.vertices.data());
-        }
-        if (!primitive.indices.empty()) {
-          glNamedBufferSubData(
-              indices_.id(), static_cast<GLintptr>(range.firstIndex * sizeof(std::uint32_t)),
-              static_cast<GLsizeiptr>(primitive.indices.size() * sizeof(std::uint32_t)),
-              primitive.indices.data());
-        }
-      }
-    }
+  for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
+    forEachPrimitive(
+        scene, layout, mesh, [&](const Primitive& primitive, const PrimitiveRange& at) {
+          if (!primitive.vertices.empty()) {
+            glNamedBufferSubData(
+                vertices_.id(),
+                static_cast<GLintptr>(static_cast<std::size_t>(at.baseVertex) * sizeof(Vertex)),
+                static_cast<GLsizeiptr>(primitive.vertices.size() * sizeof(Vertex)),
+                primitive.vertices.data());
+          }
+          if (!primitive.indices.empty()) {
+            glNamedBufferSubData(
+                indices_.id(), static_cast<GLintptr>(at.firstIndex * sizeof(std::uint32_t)),
+                static_cast<GLsizeiptr>(primitive.indices.size() * sizeof(std::uint32_t)),
+                primitive.indices.data());
+          }
+        });
   }
 }
 
-const GpuScene::UploadedImage* GpuScene::imageTexture(int image, TextureUsage usage) {
+const GpuScene::UploadedImage* GpuScene::imageTexture(int image, TextureUsage usage,
+                                                      const StagedScene* staged) {
   if (image < 0 || static_cast<size_t>(image) >= scene_.images.size()) return nullptr;
   const Image8& pixels = scene_.images[static_cast<size_t>(image)];
   if (pixels.width <= 0 || pixels.height <= 0 || pixels.channels != 4) return nullptr;
@@ -173,14 +151,15 @@ const GpuScene::UploadedImage* GpuScene::imageTexture(int image, TextureUsage us
       distinctUses || usage == TextureUsage::Color ? usage : TextureUsage::Data;
   const auto key = std::make_pair(image, static_cast<int>(kind));
   if (const auto it = textures_.find(key); it != textures_.end()) return &it->second;
-  std::optional<StagedPixels> staged;
-  if (staged_ != nullptr) {
-    if (const auto at = staged_->images.find(image); at != staged_->images.end()) {
-      staged = StagedPixels{staged_->buffer, at->second};
+  std::optional<StagedPixels> stagedPixels;
+  if (staged != nullptr) {
+    if (const auto at = staged->images.find(image); at != staged->images.end()) {
+      stagedPixels = StagedPixels{staged->buffer, at->second};
     }
   }
-  UploadedTexture uploaded = uploadTexture(pixels, precompressed, kind, options_.compression,
-                                           capabilities_, warnings_, staged ? &*staged : nullptr);
+  UploadedTexture uploaded =
+      uploadTexture(pixels, precompressed, kind, options_.compression, capabilities_, warnings_,
+                    stagedPixels ? &*stagedPixels : nullptr);
   textureBytes_ += uploaded.bytes;
   memory_.bytes += uploaded.bytes;
   memory_.uncompressedBytes += uploaded.uncompressedBytes;
@@ -216,8 +195,13 @@ GLuint GpuScene::samplerFor(const Sampler& sampler) {
 }
 
 GpuScene::BoundTexture GpuScene::texture(const TextureRef& ref, TextureUsage usage) {
+  return texture(ref, usage, nullptr);
+}
+
+GpuScene::BoundTexture GpuScene::texture(const TextureRef& ref, TextureUsage usage,
+                                         const StagedScene* staged) {
   if (!ref.valid()) return {};
-  const UploadedImage* image = imageTexture(ref.image, usage);
+  const UploadedImage* image = imageTexture(ref.image, usage, staged);
   if (image == nullptr) return {};
   return {image->texture.id(), samplerFor(ref.sampler), image->twoChannel};
 }

@@ -19,6 +19,7 @@
 
 #include "gl/gl_objects.hpp"
 #include "gl/readback_buffers.hpp"
+#include "scene/geometry_layout.hpp"
 #include "scene/scene.hpp"
 #include "scene/staged_scene.hpp"
 #include "scene/texture_upload.hpp"
@@ -97,28 +98,22 @@ class GpuScene {
            const StagedScene* staged = nullptr);
   void makeVertexArrays();
 
-  // Where a primitive lies in the scene's buffers.
-  struct GpuPrimitive {
-    GLsizei indexCount = 0;
-    GLuint firstIndex = 0;
-    GLint baseVertex = 0;
-  };
   struct UploadedImage {
     gl::Texture texture;
     bool twoChannel = false;
   };
   GLuint samplerFor(const Sampler& sampler);
-  const UploadedImage* imageTexture(int image, TextureUsage usage);
+  // `staged` (may be null): the scene's pixels in staging memory, while it is being made.
+  BoundTexture texture(const TextureRef& ref, TextureUsage usage, const StagedScene* staged);
+  const UploadedImage* imageTexture(int image, TextureUsage usage, const StagedScene* staged);
   // One buffer pair for the whole scene: a new scene's allocations and its first draws'
   // vertex-array validation were per primitive before, which on NVIDIA's driver made most of
   // a many-part asset's upload.
-  void uploadGeometry(const Scene& scene, const StagedScene* staged);
+  void uploadGeometry(const Scene& scene, const GeometryLayout& layout, const StagedScene* staged);
 
   const Scene& scene_;
-  const StagedScene* staged_ = nullptr;  // during construction only
   GpuSceneOptions options_;
   TextureCapabilities capabilities_;
-  std::vector<std::vector<GpuPrimitive>> meshes_;
   std::vector<DrawItem> drawItems_;
   gl::Buffer vertices_;
   gl::Buffer indices_;

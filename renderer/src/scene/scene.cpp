@@ -47,16 +47,14 @@ void Scene::computeBounds() {
   for (const MeshInstance& instance : instances) {
     const Mesh* mesh = meshOf(*this, instance);
     if (mesh == nullptr) continue;
-    for (const auto* list : {&mesh->primitives, &mesh->linesAndPoints}) {
-      for (const Primitive& primitive : *list) {
-        for (std::uint32_t index : primitive.indices) {
-          if (index >= primitive.vertices.size()) continue;
-          const glm::vec4 world =
-              instance.world * glm::vec4(primitive.vertices[index].position, 1.0F);
-          bounds.extend(glm::vec3(world));
-        }
+    forEachPrimitive(*mesh, [&](const Primitive& primitive) {
+      for (std::uint32_t index : primitive.indices) {
+        if (index >= primitive.vertices.size()) continue;
+        const glm::vec4 world =
+            instance.world * glm::vec4(primitive.vertices[index].position, 1.0F);
+        bounds.extend(glm::vec3(world));
       }
-    }
+    });
   }
 }
 

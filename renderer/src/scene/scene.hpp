@@ -56,6 +56,14 @@ struct Mesh {
   std::vector<Primitive> linesAndPoints;
 };
 
+// Every primitive of `mesh`: its triangle lists, then its lines and points.
+template <typename Fn>
+void forEachPrimitive(const Mesh& mesh, Fn&& fn) {
+  for (const auto* list : {&mesh.primitives, &mesh.linesAndPoints}) {
+    for (const Primitive& primitive : *list) fn(primitive);
+  }
+}
+
 // A mesh placed in the world by the flattened node hierarchy.
 struct MeshInstance {
   int mesh = 0;

@@ -12,6 +12,7 @@
 #include "scene/asset_path.hpp"
 #include "scene/atrium_scene.hpp"
 #include "scene/demo_scene.hpp"
+#include "scene/geometry_layout.hpp"
 #include "scene/gltf/gltf_loader.hpp"
 #include "scene/worker/scene_worker_pool.hpp"
 
@@ -85,15 +86,8 @@ std::unique_ptr<gl::StagingMemory> makeStaging(const RendererOptions& options,
 // What a scene's upload takes on the GPU, before it is made: vertices, indices and its images
 // as RGBA8 with mipmaps.
 std::size_t estimatedUploadBytes(const Scene& scene) {
-  std::size_t bytes = 0;
-  for (const Mesh& mesh : scene.meshes) {
-    for (const auto* list : {&mesh.primitives, &mesh.linesAndPoints}) {
-      for (const Primitive& primitive : *list) {
-        bytes += primitive.vertices.size() * sizeof(Vertex) +
-                 primitive.indices.size() * sizeof(std::uint32_t);
-      }
-    }
-  }
+  const GeometryLayout layout = geometryLayout(scene);
+  std::size_t bytes = layout.vertexBytes() + layout.indexBytes();
   for (const Image8& image : scene.images) {
     bytes += static_cast<std::size_t>(std::max(image.width, 0)) *
              static_cast<std::size_t>(std::max(image.height, 0)) * 4 * 4 / 3;

@@ -3,6 +3,8 @@
 #include <cstring>
 #include <set>
 
+#include "scene/geometry_layout.hpp"
+
 namespace lgh {
 namespace {
 
@@ -34,16 +36,9 @@ std::size_t copyAt(std::byte* at, const std::vector<T>& values) {
 
 std::optional<StagedScene> stageScene(const Scene& scene, gl::StagingMemory& memory,
                                       TextureCompression compression, std::size_t minBytes) {
-  std::size_t vertexBytes = 0;
-  std::size_t indexBytes = 0;
-  for (const Mesh& mesh : scene.meshes) {
-    for (const auto* list : {&mesh.primitives, &mesh.linesAndPoints}) {
-      for (const Primitive& primitive : *list) {
-        vertexBytes += primitive.vertices.size() * sizeof(Vertex);
-        indexBytes += primitive.indices.size() * sizeof(std::uint32_t);
-      }
-    }
-  }
+  const GeometryLayout layout = geometryLayout(scene);
+  const std::size_t vertexBytes = layout.vertexBytes();
+  const std::size_t indexBytes = layout.indexBytes();
   const std::set<int> images = plainImages(scene, compression);
   constexpr std::size_t kImageAlignment = 16;
   const auto align = [](std::size_t at) {
@@ -61,15 +56,14 @@ std::optional<StagedScene> stageScene(const Scene& scene, gl::StagingMemory& mem
   staged.buffer = memory.buffer();
   staged.vertices = region->offset();
   staged.indices = region->offset() + static_cast<GLintptr>(vertexBytes);
-  std::byte* vertexAt = region->data();
-  std::byte* indexAt = region->data() + vertexBytes;
-  for (const Mesh& mesh : scene.meshes) {
-    for (const auto* list : {&mesh.primitives, &mesh.linesAndPoints}) {
-      for (const Primitive& primitive : *list) {
-        vertexAt += copyAt(vertexAt, primitive.vertices);
-        indexAt += copyAt(indexAt, primitive.indices);
-      }
-    }
+  for (std::size_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
+    forEachPrimitive(
+        scene, layout, mesh, [&](const Primitive& primitive, const PrimitiveRange& at) {
+          copyAt(region->data() + static_cast<std::size_t>(at.baseVertex) * sizeof(Vertex),
+                 primitive.vertices);
+          copyAt(region->data() + vertexBytes + at.firstIndex * sizeof(std::uint32_t),
+                 primitive.indices);
+        });
   }
   std::size_t at = align(vertexBytes + indexBytes);
   for (const int image : images) {
