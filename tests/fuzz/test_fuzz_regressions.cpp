@@ -37,7 +37,7 @@ std::vector<char> readBytes(const fs::path& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// Made once per process (ctest runs each target in a process of its own), removed at exit.
+// Made once per process, removed at exit.
 struct SeedDir {
   fs::path path;
   ~SeedDir() {
