@@ -125,7 +125,7 @@ class PipelinedFrames {
  public:
   PipelinedFrames(lgh::Renderer& renderer, int encodeThreads)
       : renderer_(renderer),
-        encoders_(encodeThreads),
+        encoders_(encodeThreads, "lgh-encode"),
         limit_(static_cast<std::size_t>(2 * encoders_.threads() +
                                         renderer.options().framesInFlight)) {}
 

@@ -20,6 +20,7 @@
 #include "benchmark_request.hpp"
 #include "lgh/bench/gi_benchmark.hpp"
 #include "lgh/error.hpp"
+#include "lgh/thread_name.hpp"
 #include "logging.hpp"
 
 extern char** environ;
@@ -150,6 +151,7 @@ std::uint64_t BenchmarkRunner::start(const nlohmann::json& body) {
 }
 
 void BenchmarkRunner::monitor(pid_t pid, int out, int err, std::uint64_t id) {
+  lgh::nameThisThread("lgh-benchmark");
   std::string output;
   std::string pending;
   std::array<char, 4096> buffer{};

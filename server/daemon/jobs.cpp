@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "lgh/thread_name.hpp"
 #include "logging.hpp"
 
 namespace lghd {
@@ -233,6 +234,7 @@ std::optional<json> JobStore::remove(const std::string& id) {
 // --- The runner ---------------------------------------------------------------------------------
 
 void JobStore::run() {
+  lgh::nameThisThread("lgh-jobs");
   while (const JobPtr job = nextJob()) runJob(*job);
 }
 

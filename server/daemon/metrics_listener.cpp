@@ -1,5 +1,6 @@
 #include "metrics_listener.hpp"
 
+#include "lgh/thread_name.hpp"
 #include "routes.hpp"
 
 namespace lghd {
@@ -18,7 +19,10 @@ int MetricsListener::start(const std::string& host, int port) {
   const int bound =
       port == 0 ? server_.bind_to_any_port(host) : (server_.bind_to_port(host, port) ? port : -1);
   if (bound < 0) return -1;
-  thread_ = std::thread([this] { server_.listen_after_bind(); });
+  thread_ = std::thread([this] {
+    lgh::nameThisThread("lgh-metrics");
+    server_.listen_after_bind();
+  });
   return bound;
 }
 

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "clock.hpp"
+#include "lgh/thread_name.hpp"
 #include "logging.hpp"
 #include "vulkan_probe_process.hpp"
 
@@ -43,7 +44,7 @@ RenderQueue::~RenderQueue() {
 
 void RenderQueue::start(FatalHandler onFatal) {
   onFatal_ = std::move(onFatal);
-  encoders_ = std::make_unique<lgh::TaskPool>(options_.output.encoderCount());
+  encoders_ = std::make_unique<lgh::TaskPool>(options_.output.encoderCount(), "lgh-encode");
   RenderWorker::Hooks hooks;
   hooks.stateChanged = [this](RenderWorker& worker) { workerStateChanged(worker); };
   hooks.piecesReturned = [this](RenderWorker& worker, std::vector<JobPiece> pieces) {
@@ -67,6 +68,7 @@ void RenderQueue::start(FatalHandler onFatal) {
   // starts once a renderer is up: run beside the GL bring-up, it slowed the start-up
   // (docs/BENCHMARKS.md, "Start-up").
   vulkanProbe_ = std::thread([slot = vulkan_] {
+    lgh::nameThisThread("lgh-vk-probe");
     {
       std::unique_lock lock(slot->mutex);
       slot->changed.wait(lock, [&] { return slot->mayStart || slot->cancelled; });

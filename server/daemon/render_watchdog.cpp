@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "lgh/thread_name.hpp"
+
 namespace lghd {
 
 RenderWatchdog::RenderWatchdog(Handler onHung) : onHung_(std::move(onHung)) {
@@ -39,6 +41,7 @@ bool RenderWatchdog::fired() const {
 }
 
 void RenderWatchdog::run() {
+  lgh::nameThisThread("lgh-watchdog");
   std::unique_lock lock(mutex_);
   while (!stopping_) {
     if (!hungAfter_) {

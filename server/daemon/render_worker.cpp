@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "lgh/thread_name.hpp"
 #include "logging.hpp"
 
 namespace lghd {
@@ -186,6 +187,7 @@ bool RenderWorker::join(Clock::duration wait) {
 // --- The render thread --------------------------------------------------------------------------
 
 void RenderWorker::run() {
+  lgh::nameThisThread(fmt::format("lgh-render-{}", options_.index));
   if (bringUpRenderer()) {
     while (std::optional<JobPiece> piece = takePiece()) {
       runPiece(*piece);

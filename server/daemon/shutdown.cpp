@@ -3,6 +3,7 @@
 #include <csignal>
 #include <ctime>
 
+#include "lgh/thread_name.hpp"
 #include "logging.hpp"
 
 namespace lghd {
@@ -48,6 +49,7 @@ void ShutdownSupervisor::join() {
 }
 
 void ShutdownSupervisor::run() {
+  lgh::nameThisThread("lgh-shutdown");
   const sigset_t signals = shutdownSignals();
   const timespec poll{0, 100'000'000};
   while (!stopRequested_) {

@@ -9,6 +9,8 @@
 #include <deque>
 #include <functional>
 #include <mutex>
+#include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -16,8 +18,9 @@ namespace lgh {
 
 class TaskPool {
  public:
-  // `threads` < 1 means one per hardware thread.
-  explicit TaskPool(int threads);
+  // `threads` < 1 means one per hardware thread. Worker i is named "<name>-<i>"
+  // (lgh/thread_name.hpp).
+  explicit TaskPool(int threads, std::string_view name = "lgh-pool");
   // Runs what is queued, then joins the workers.
   ~TaskPool();
   TaskPool(const TaskPool&) = delete;
@@ -38,7 +41,7 @@ class TaskPool {
   static int hardwareThreads();
 
  private:
-  void work();
+  void work(int index);
   void stop();  // runs what is queued, joins the workers
 
   mutable std::mutex mutex_;
@@ -48,6 +51,7 @@ class TaskPool {
   int running_ = 0;
   bool stopping_ = false;
   std::vector<std::thread> workers_;
+  std::string name_;
 };
 
 }  // namespace lgh

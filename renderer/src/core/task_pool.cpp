@@ -4,6 +4,9 @@
 #include <atomic>
 #include <exception>
 #include <memory>
+#include <string>
+
+#include "lgh/thread_name.hpp"
 
 namespace lgh {
 
@@ -11,11 +14,11 @@ int TaskPool::hardwareThreads() {
   return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 }
 
-TaskPool::TaskPool(int threads) {
+TaskPool::TaskPool(int threads, std::string_view name) : name_(name) {
   const int count = threads < 1 ? hardwareThreads() : threads;
   workers_.reserve(static_cast<std::size_t>(count));
   try {
-    for (int i = 0; i < count; ++i) workers_.emplace_back([this] { work(); });
+    for (int i = 0; i < count; ++i) workers_.emplace_back([this, i] { work(i); });
   } catch (...) {  // no thread for the rest: the ones made must be joined before this throws
     stop();
     throw;
@@ -52,7 +55,8 @@ void TaskPool::waitIdle() {
   idle_.wait(lock, [this] { return tasks_.empty() && running_ == 0; });
 }
 
-void TaskPool::work() {
+void TaskPool::work(int index) {
+  nameThisThread(name_ + "-" + std::to_string(index));
   std::unique_lock lock(mutex_);
   for (;;) {
     workAvailable_.wait(lock, [this] { return stopping_ || !tasks_.empty(); });

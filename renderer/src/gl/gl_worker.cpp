@@ -1,10 +1,9 @@
 #include "gl/gl_worker.hpp"
 
-#include <pthread.h>
-
 #include <spdlog/spdlog.h>
 
 #include "lgh/error.hpp"
+#include "lgh/thread_name.hpp"
 
 namespace lgh::gl {
 
@@ -47,7 +46,7 @@ void Worker::enqueue(std::packaged_task<void()> task) {
 void Worker::logFailure(const char* what) { spdlog::error("GL worker: a task failed: {}", what); }
 
 void Worker::loop(std::promise<void>& started) {
-  pthread_setname_np(pthread_self(), "lgh-gl-worker");
+  nameThisThread("lgh-gl-worker");
   try {
     context_->makeCurrent();
   } catch (...) {

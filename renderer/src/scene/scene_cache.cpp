@@ -344,7 +344,8 @@ void SceneCache::startPrefetch(const std::string& key, std::shared_ptr<const Sce
   auto entry = prefetches_.end();
   try {
     if (!prefetchThreads_) {
-      prefetchThreads_ = std::make_unique<TaskPool>(static_cast<int>(maxPrefetches()));
+      prefetchThreads_ =
+          std::make_unique<TaskPool>(static_cast<int>(maxPrefetches()), "lgh-prefetch");
     }
     // The parsers serve it in hint order, whenever its thread gets to them.
     ParserTurn turn;
@@ -511,7 +512,7 @@ void SceneCache::release(Slot evicted) {
 void SceneCache::releaseStructures(std::unique_ptr<vk::TraceScene> structures) {
   if (!structures) return;
   try {
-    if (!structureReleaser_) structureReleaser_ = std::make_unique<TaskPool>(1);
+    if (!structureReleaser_) structureReleaser_ = std::make_unique<TaskPool>(1, "lgh-as-free");
     structureReleaser_->submit([held = std::shared_ptr<vk::TraceScene>(
                                     std::move(structures))]() mutable { held.reset(); });
   } catch (const std::exception& error) {  // no thread (std::system_error), no memory

@@ -31,6 +31,7 @@
 #include <spdlog/spdlog.h>
 
 #include "lgh/scene_worker.hpp"
+#include "lgh/thread_name.hpp"
 #include "scene/gltf/gltf_loader.hpp"
 
 extern char** environ;
@@ -208,6 +209,7 @@ class SpawnThread {
   }
 
   [[noreturn]] void loop() {
+    nameThisThread("lgh-spawn");
     for (;;) {
       std::function<void()> task;
       {
