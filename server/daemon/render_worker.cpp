@@ -187,8 +187,10 @@ bool RenderWorker::join(Clock::duration wait) {
 // --- The render thread --------------------------------------------------------------------------
 
 void RenderWorker::run() {
-  lgh::nameThisThread(fmt::format("lgh-render-{}", options_.index));
+  // Named once the renderer is up: the threads the drivers start while it comes up take the name
+  // of the thread that starts them, and should not pass for the render thread.
   if (bringUpRenderer()) {
+    lgh::nameThisThread(fmt::format("lgh-render-{}", options_.index));
     while (std::optional<JobPiece> piece = takePiece()) {
       runPiece(*piece);
       finishPiece();
