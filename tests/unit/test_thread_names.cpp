@@ -25,22 +25,20 @@ std::string nameOfThisThread() {
   return name;
 }
 
-TEST(ThreadNames, AThreadIsNamedAsAsked) {
+// The name /proc shows for a new thread that named itself `name`.
+std::string nameSeenAfterNaming(const std::string& name) {
   std::string seen;
   std::thread([&] {
-    nameThisThread("lgh-test");
+    nameThisThread(name);
     seen = nameOfThisThread();
   }).join();
-  EXPECT_EQ(seen, "lgh-test");
+  return seen;
 }
 
+TEST(ThreadNames, AThreadIsNamedAsAsked) { EXPECT_EQ(nameSeenAfterNaming("lgh-test"), "lgh-test"); }
+
 TEST(ThreadNames, ANameIsCutAtLinuxsFifteenBytes) {
-  std::string seen;
-  std::thread([&] {
-    nameThisThread("lgh-a-name-longer-than-fifteen-bytes");
-    seen = nameOfThisThread();
-  }).join();
-  EXPECT_EQ(seen, "lgh-a-name-long");
+  EXPECT_EQ(nameSeenAfterNaming("lgh-a-name-longer-than-fifteen-bytes"), "lgh-a-name-long");
 }
 
 TEST(ThreadNames, TaskPoolWorkersCarryThePoolsNameAndTheirIndex) {
