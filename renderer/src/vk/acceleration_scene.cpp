@@ -54,8 +54,8 @@ std::pair<BottomLevels, AccelerationStructure> buildTogether(
   TopLevelBuild topBuild(device, oneTime, static_cast<std::uint32_t>(scene.instances.size()));
   const ::vk::DeviceSize topOffset =
       alignUp(bottomBuilds.storageBytes(), AccelerationStructure::kOffsetAlignment);
-  const auto storage = std::make_shared<const DeviceBuffer>(
-      device, accelerationStorage(topOffset + topBuild.storageBytes()));
+  const std::shared_ptr<const DeviceBuffer> storage =
+      device.structureStorage().take(topOffset + topBuild.storageBytes());
   const ::vk::DeviceSize topScratch =
       alignUp(bottomBuilds.scratchBytes(), device.limits().scratchAlignment);
   const DeviceBuffer& scratch = oneTime.transientBuffers().get(

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "lgh/error.hpp"
+#include "vk/acceleration_structure.hpp"
 #include "vk/physical_device.hpp"
 #include "vk/vulkan_instance.hpp"
 
@@ -113,6 +114,7 @@ VulkanDevice::VulkanDevice(::vk::raii::Instance instance, ::vk::raii::PhysicalDe
       limits_(readLimits(physical_, capabilities_.rayTracingPipeline, queueFamily_)),
       memory_(physical_.getMemoryProperties()),
       info_(describe(physical_, capabilities_)),
+      structureStorage_(RecycledBuffers::create(*this, accelerationStorage(0))),
       oneTimeCommands_(std::make_unique<OneTimeCommands>(*this, QueueRole::Frames)),
       deferredRelease_(std::make_unique<DeferredRelease>(*this)) {
   for (std::size_t i = 0; i < kAheadBuilders; ++i) {

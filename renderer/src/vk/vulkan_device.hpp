@@ -19,6 +19,7 @@
 #include "vk/device_capabilities.hpp"
 #include "vk/one_time_commands.hpp"
 #include "vk/queue_role.hpp"
+#include "vk/recycled_buffers.hpp"
 #include "vk/shadow_tracer.hpp"
 #include "vk/vulkan_hpp.hpp"
 
@@ -87,6 +88,10 @@ class VulkanDevice {
   // Waits while all of them are held.
   AheadLease leaseAheadCommands() const;
 
+  // Where small scenes' acceleration structures live: storage buffers kept across scenes
+  // (vk/recycled_buffers.hpp).
+  RecycledBuffers& structureStorage() const { return *structureStorage_; }
+
   // Holds objects until the work submitted so far is done (vk/deferred_release.hpp).
   DeferredRelease& deferredRelease() const { return *deferredRelease_; }
 
@@ -111,7 +116,9 @@ class VulkanDevice {
   TracerInfo info_;
   mutable std::mutex queueMutex_;
   mutable std::mutex buildQueueMutex_;
-  // Declared after device_: destroyed before it.
+  // Declared after device_: destroyed before it. The kept structure storage goes after the
+  // deferred releases, which give theirs back to it.
+  std::shared_ptr<RecycledBuffers> structureStorage_;
   std::unique_ptr<OneTimeCommands> oneTimeCommands_;
   std::vector<std::unique_ptr<OneTimeCommands>> aheadCommands_;
   mutable std::mutex aheadMutex_;
