@@ -11,7 +11,10 @@
 namespace lgh {
 
 int TaskPool::hardwareThreads() {
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  // Read once: libstdc++ asks the kernel each time (it opens /sys/devices/system/cpu/online),
+  // and the daemon's render thread asks for every frame (its frames-in-flight limit).
+  static const int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return threads;
 }
 
 TaskPool::TaskPool(int threads, std::string_view name) : name_(name) {

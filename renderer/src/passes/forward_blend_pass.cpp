@@ -40,14 +40,22 @@ void ForwardBlendPass::bindTargets(FrameTargets& targets) {
 
 int ForwardBlendPass::run(const Inputs& inputs, SurfacePrograms& programs, GpuScene& gpuScene,
                           FrameTargets& targets) {
-  std::vector<const GpuScene::DrawItem*> items;
-  for (const auto& item : gpuScene.drawItems()) {
-    if (inputs.materials->at(item.material).alphaMode == AlphaMode::Blend) items.push_back(&item);
-  }
+  struct Blended {
+    const GpuScene::DrawItem* item;
+    float distance;  // of its centre from the eye
+  };
   const glm::vec3 eye = inputs.camera->position;
-  std::stable_sort(items.begin(), items.end(), [&](const auto* a, const auto* b) {
-    return glm::distance(a->center, eye) > glm::distance(b->center, eye);
-  });
+  std::vector<Blended> blended;
+  for (const auto& item : gpuScene.drawItems()) {
+    if (inputs.materials->at(item.material).alphaMode == AlphaMode::Blend) {
+      blended.push_back({&item, glm::distance(GpuScene::centreOf(item), eye)});
+    }
+  }
+  std::stable_sort(blended.begin(), blended.end(),
+                   [](const Blended& a, const Blended& b) { return a.distance > b.distance; });
+  std::vector<const GpuScene::DrawItem*> items;
+  items.reserve(blended.size());
+  for (const Blended& entry : blended) items.push_back(entry.item);
   bindTargets(targets);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   glViewport(0, 0, targets.width, targets.height);

@@ -21,14 +21,16 @@ bool usesMipmaps(int minFilter) {
          minFilter == GL_NEAREST_MIPMAP_LINEAR || minFilter == GL_LINEAR_MIPMAP_LINEAR;
 }
 
-glm::vec3 boundsCenter(const Primitive& primitive, const glm::mat4& world) {
-  Bounds bounds;
-  for (const Vertex& vertex : primitive.vertices) bounds.extend(vertex.position);
-  if (bounds.empty()) return glm::vec3(world[3]);
-  return glm::vec3(world * glm::vec4(bounds.center(), 1.0F));
-}
-
 }  // namespace
+
+glm::vec3 GpuScene::centreOf(const DrawItem& item) {
+  Bounds bounds;
+  if (item.primitive != nullptr) {
+    for (const Vertex& vertex : item.primitive->vertices) bounds.extend(vertex.position);
+  }
+  if (bounds.empty()) return glm::vec3(item.world[3]);
+  return glm::vec3(item.world * glm::vec4(bounds.center(), 1.0F));
+}
 
 GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, const StagedScene* staged)
     : GpuScene(scene, options, VertexArraysLater{}, staged) {
@@ -44,14 +46,14 @@ GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArr
   uploadGeometry(scene, layout, staged);
   for (const MeshInstance& instance : scene.instances) {
     if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= scene.meshes.size()) continue;
-    forEachPrimitive(scene, layout, static_cast<size_t>(instance.mesh),
-                     [&](const Primitive& primitive, const PrimitiveRange& range) {
-                       if (range.indexCount == 0) return;
-                       drawItems_.push_back(
-                           {0, range.indexCount, range.firstIndex, range.baseVertex,
-                            primitive.material, instance.world, primitive.topology, primitive.unlit,
-                            primitive.tangents, boundsCenter(primitive, instance.world)});
-                     });
+    forEachPrimitive(
+        scene, layout, static_cast<size_t>(instance.mesh),
+        [&](const Primitive& primitive, const PrimitiveRange& range) {
+          if (range.indexCount == 0) return;
+          drawItems_.push_back({0, range.indexCount, range.firstIndex, range.baseVertex,
+                                primitive.material, instance.world, primitive.topology,
+                                primitive.unlit, primitive.tangents, &primitive});
+        });
   }
   // The materials' own textures now, so that a scene's first frame and its load time carry them.
   for (const Material& material : scene.materials) {

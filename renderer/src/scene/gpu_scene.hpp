@@ -63,10 +63,15 @@ class GpuScene {
     int material;       // -1: default material
     glm::mat4 world;
     Topology topology = Topology::Triangles;
-    bool unlit = false;      // lines and points without normals
-    bool tangents = false;   // the vertices carry a tangent frame
-    glm::vec3 center{0.0F};  // world-space centre of the bounds: sorting blended surfaces
+    bool unlit = false;                    // lines and points without normals
+    bool tangents = false;                 // the vertices carry a tangent frame
+    const Primitive* primitive = nullptr;  // the scene's, for centreOf
   };
+  // The world-space centre of an item's bounds, for sorting blended surfaces back to front. Only
+  // blended items need it, so it is computed when asked: one pass over the primitive's vertices,
+  // which for every item of a large scene was a noticeable part of a new scene's upload on the
+  // render thread.
+  static glm::vec3 centreOf(const DrawItem& item);
   // Every primitive of every instance.
   const std::vector<DrawItem>& drawItems() const { return drawItems_; }
 
