@@ -205,6 +205,10 @@ void Renderer::prefetch(const RenderRequest& request) {
       traces ? impl_->shadowDevice.prefetchBuilder() : SceneCache::TraceBuilder{});
 }
 
+bool Renderer::scenePending(const RenderRequest& request) const {
+  return impl_->cache.inProgress(request.scene, loadOptionsOf(request));
+}
+
 std::size_t Renderer::prefetchDepth() const { return impl_->cache.prefetchDepth(); }
 
 std::uint64_t Renderer::Impl::submit(const RenderRequest& request) {

@@ -161,6 +161,11 @@ void Metrics::recordShadows(const std::string& shadows) {
   ++shadows_[fmt::format("shadows=\"{}\"", escapeLabel(shadows))];
 }
 
+void Metrics::recordDrawnAhead() {
+  std::lock_guard lock(mutex_);
+  ++drawnAhead_;
+}
+
 void Metrics::recordEncode(std::string_view format, double waitSeconds, double encodeSeconds) {
   std::lock_guard lock(mutex_);
   encodeWaitSeconds_.observe(waitSeconds);
@@ -263,6 +268,9 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
          "Renders by how their shadows were traced: ray-query, pipeline, none (the machine cannot "
          "trace: unshadowed with a warning), off (the request asked for none).");
   counterLines(out, "lghd_render_shadows_total", shadows_);
+  header(out, "lghd_renders_drawn_ahead_total", "counter",
+         "Renders of a batch drawn before an earlier one whose scene was still being parsed.");
+  out += fmt::format("lghd_renders_drawn_ahead_total {}\n", drawnAhead_);
   header(out, "lghd_gpu_renders_total", "counter",
          "Renders by render worker (gpu: its place in --gpus) and outcome, as lghd_renders_total.");
   counterLines(out, "lghd_gpu_renders_total", gpuRenders_);

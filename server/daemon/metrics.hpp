@@ -78,6 +78,8 @@ class Metrics {
                          int gpu = -1);
   // How a render's shadows were made (its decision "shadows": ray-query, pipeline, none, off).
   void recordShadows(const std::string& shadows);
+  // A render drawn before an earlier one of its batch whose scene was still being parsed.
+  void recordDrawnAhead();
   void recordThumbnail(const std::string& status);
   // One frame encoded on an encoder thread: its wait for one (from read-back to the start of its
   // encoding) and the encoding itself, by output format (png, exr-half, exr-float).
@@ -98,7 +100,8 @@ class Metrics {
   Histogram queueWaitSeconds_{{0.001, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 2.5, 5, 10, 30}};
   std::map<Labels, std::uint64_t> thumbnails_;  // status
   std::map<Labels, std::uint64_t> shadows_;     // shadows
-  std::map<Labels, Histogram> encodeSeconds_;   // format
+  std::uint64_t drawnAhead_ = 0;
+  std::map<Labels, Histogram> encodeSeconds_;  // format
   Histogram encodeWaitSeconds_{
       {0.0001, 0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 2.5}};
 };

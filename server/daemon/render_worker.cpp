@@ -322,11 +322,12 @@ void RenderWorker::forget(double estimateSeconds) {
   pendingSeconds_ -= estimateSeconds;
 }
 
-RenderWorker::LookAhead RenderWorker::nextTickets(const JobPiece& piece, std::size_t position,
-                                                  std::size_t count) {
+RenderWorker::LookAhead RenderWorker::nextTickets(const JobPiece& piece,
+                                                  const std::vector<bool>& taken,
+                                                  std::size_t position, std::size_t count) {
   LookAhead next;
-  for (std::size_t i = position + 1; i < piece.tickets.size() && next.size() < count; ++i) {
-    next.push_back(piece.job->tickets[piece.tickets[i]]);
+  for (std::size_t i = 0; i < piece.tickets.size() && next.size() < count; ++i) {
+    if (!taken[i] && i != position) next.push_back(piece.job->tickets[piece.tickets[i]]);
   }
   std::lock_guard lock(mutex_);
   for (const JobPiece& queued : pieces_) {
@@ -336,6 +337,42 @@ RenderWorker::LookAhead RenderWorker::nextTickets(const JobPiece& piece, std::si
     }
   }
   return next;
+}
+
+std::optional<std::size_t> RenderWorker::firstAtHand(const JobPiece& piece,
+                                                     const std::vector<bool>& taken,
+                                                     std::size_t head) const {
+  std::size_t looked = 0;
+  for (std::size_t i = head; i < piece.tickets.size() && looked < kDrawAheadWindow; ++i) {
+    if (taken[i]) continue;
+    ++looked;
+    const RenderTicket& ticket = *piece.job->tickets[piece.tickets[i]];
+    // A ticket to skip (cancelled, or its waiter gave up) costs nothing: take it at once.
+    if (piece.job->cancelled || ticket.settled()) return i;
+    if (!renderer_->scenePending(ticket.request())) return i;
+  }
+  return std::nullopt;
+}
+
+std::size_t RenderWorker::choosePosition(const JobPiece& piece, const std::vector<bool>& taken,
+                                         std::size_t head) {
+  const bool alone = std::find(taken.begin() + static_cast<std::ptrdiff_t>(head) + 1, taken.end(),
+                               false) == taken.end();
+  if (alone || !renderer_) return head;
+  // The scenes must be on their way before they are looked at: the first of a batch are not.
+  prefetch(piece.job->tickets[piece.tickets[head]],
+           nextTickets(piece, taken, head, renderer_->prefetchDepth()));
+  const auto giveUp = Clock::now() + kDrawAheadWait;
+  for (;;) {
+    if (const std::optional<std::size_t> atHand = firstAtHand(piece, taken, head)) {
+      if (*atHand != head) metrics_.recordDrawnAhead();
+      return *atHand;
+    }
+    // Nothing at hand: hand finished frames to the encoders meanwhile, or wait a little.
+    if (Clock::now() >= giveUp) return head;  // its submit waits for its scene
+    if (!completeFrame(false)) std::this_thread::sleep_for(kDrawAheadPoll);
+    if (!renderer_) return head;
+  }
 }
 
 // Each ticket is hinted once, when it enters the look-ahead window: the window moves on by about
@@ -369,7 +406,17 @@ void RenderWorker::runPiece(const JobPiece& piece) {
                    {{"request_id", job.requestId}, {"gpu", options_.index}});
     return;
   }
-  for (std::size_t position = 0; position < piece.tickets.size(); ++position) {
+  // Tickets are drawn in order, except that one whose scene is still being parsed ahead lets a
+  // later one whose scene is at hand go first (choosePosition). Answers keep their order: a
+  // batch's NDJSON lines and ZIP entries wait for each ticket in turn.
+  std::vector<bool> taken(piece.tickets.size(), false);
+  std::size_t head = 0;
+  for (;;) {
+    while (head < taken.size() && taken[head]) ++head;
+    if (head == taken.size()) return;
+    const std::size_t position = choosePosition(piece, taken, head);
+    if (!renderer_) break;
+    taken[position] = true;
     const std::shared_ptr<RenderTicket>& ticket = job.tickets[piece.tickets[position]];
     if (job.cancelled) ticket->fail(unavailable("the batch was cancelled"));
     if (ticket->settled()) {  // its waiter gave up (deadline) or the job was cancelled
@@ -377,16 +424,15 @@ void RenderWorker::runPiece(const JobPiece& piece) {
       metrics_.recordRender("skipped", options_.index);
       continue;
     }
-    submitTicket(piece, position, nextTickets(piece, position, renderer_->prefetchDepth()));
-    if (!renderer_) {  // recovery failed: this worker is out
-      failJob(job, unavailable("no working GL context on GPU " + std::to_string(options_.index)));
-      for (std::size_t rest = position + 1; rest < piece.tickets.size(); ++rest) {
-        forget(piece.estimates[rest]);
-      }
-      return;
-    }
+    submitTicket(piece, position, nextTickets(piece, taken, position, renderer_->prefetchDepth()));
+    if (!renderer_) break;
     while (completeFrame(false)) {
     }
+  }
+  // Recovery failed: this worker is out.
+  failJob(job, unavailable("no working GL context on GPU " + std::to_string(options_.index)));
+  for (std::size_t rest = 0; rest < taken.size(); ++rest) {
+    if (!taken[rest]) forget(piece.estimates[rest]);
   }
 }
 

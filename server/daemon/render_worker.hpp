@@ -112,11 +112,22 @@ class RenderWorker {
   void runPiece(const JobPiece& piece);
   void finishPiece();
   void forget(double estimateSeconds);
-  // Up to `count` tickets after `position` (in this piece, then the queued ones), owned: a
-  // shutdown or a hang may drop a queued piece, and its job with it, while the current frame
-  // renders.
+  // Up to `count` tickets to draw after the one at `position`: this piece's not yet taken, in
+  // order, then the queued pieces'. Owned: a shutdown or a hang may drop a queued piece, and its
+  // job with it, while the current frame renders.
   using LookAhead = std::vector<std::shared_ptr<const RenderTicket>>;
-  LookAhead nextTickets(const JobPiece& piece, std::size_t position, std::size_t count);
+  LookAhead nextTickets(const JobPiece& piece, const std::vector<bool>& taken, std::size_t position,
+                        std::size_t count);
+  // The position to draw next: `head` (the first not taken) when its scene is at hand, else the
+  // first of the next kDrawAheadWindow not taken whose scene is (polling up to kDrawAheadWait,
+  // finishing frames meanwhile), else `head`.
+  std::size_t choosePosition(const JobPiece& piece, const std::vector<bool>& taken,
+                             std::size_t head);
+  std::optional<std::size_t> firstAtHand(const JobPiece& piece, const std::vector<bool>& taken,
+                                         std::size_t head) const;
+  static constexpr std::size_t kDrawAheadWindow = 16;
+  static constexpr auto kDrawAheadWait = std::chrono::seconds(1);
+  static constexpr auto kDrawAheadPoll = std::chrono::microseconds(200);
   void prefetch(const std::shared_ptr<const RenderTicket>& current, const LookAhead& next);
 
   // --- Frames in flight (render thread, except encode()) ---

@@ -10,6 +10,7 @@
 
 #include "daemon_process.hpp"
 #include "http_helpers.hpp"
+#include "lgh/base64.hpp"
 
 namespace lghd::test {
 namespace {
@@ -258,6 +259,56 @@ TEST(ThumbnailsSceneParsers, ABatchParsesOnSeveralProcessesAndMatchesOneParser) 
     ASSERT_TRUE(images[1].contains(name)) << name;
     EXPECT_EQ(decodeBody(bytes, name).pixels8, decodeBody(images[1].at(name), name).pixels8)
         << name;
+  }
+}
+
+// A batch whose first asset takes far longer to parse and to build acceleration structures for
+// than the rest (2CylinderEngine against boxes): with two parser processes the boxes are at hand
+// while the engine is still on its way, and the render thread draws them first. The answer keeps
+// the request's order, and every image has the pixels of the one drawn with one parser.
+std::vector<std::uint8_t> pixelsOf(const json& line) {
+  const auto bytes = lgh::base64::decode(line.at("image_base64").get<std::string>());
+  const auto& png = std::get<std::vector<std::uint8_t>>(bytes);
+  return decodeBody(std::string(png.begin(), png.end()), line.at("file")).pixels8;
+}
+
+TEST(ThumbnailsSceneParsers, ReadyScenesAreDrawnAheadOfASlowOneAndAnswersKeepTheirOrder) {
+  json assets = json::array({"2CylinderEngine-glTF-Binary/2CylinderEngine.glb"});
+  for (int i = 0; i < 3; ++i) {
+    assets.push_back("BoxTextured-glTF-Binary/BoxTextured.glb");
+    assets.push_back("BoxTexcoords-glTF/boxTexcoords.gltf");
+  }
+  const json request = {{"assets", assets},
+                        {"width", 32},
+                        {"height", 32},
+                        {"format", "ndjson"},
+                        {"name_template", "{index}.png"}};
+  std::vector<json> lines[2];
+  double drawnAhead = 0.0;
+  for (const int parsers : {2, 1}) {
+    const DaemonProcess daemon(
+        {"--scene-parsers", std::to_string(parsers), "--scene-cache-mb", "0"});
+    auto http = daemon.client(std::chrono::seconds(120));
+    const auto result = postJson(*http, "/v1/thumbnails", request);
+    ASSERT_TRUE(result);
+    ASSERT_EQ(result->status, 200) << result->body.substr(0, 300);
+    std::vector<json>& mine = lines[parsers == 2 ? 0 : 1];
+    for (const json& line : ndjsonLines(result->body)) {
+      if (line.contains("index")) mine.push_back(line);
+    }
+    if (parsers == 2) {
+      drawnAhead = metricValue(http->Get("/metrics")->body, "lghd_renders_drawn_ahead_total");
+    }
+  }
+  EXPECT_GE(drawnAhead, 1.0) << "the boxes were at hand while the engine was on its way";
+  ASSERT_EQ(lines[0].size(), assets.size());
+  ASSERT_EQ(lines[1].size(), assets.size());
+  for (std::size_t i = 0; i < assets.size(); ++i) {
+    EXPECT_EQ(lines[0][i].at("index"), i) << "NDJSON lines in the request's order";
+    EXPECT_EQ(lines[0][i].at("asset"), assets[i]);
+    ASSERT_EQ(lines[0][i].at("status"), "ok") << lines[0][i].dump().substr(0, 300);
+    ASSERT_EQ(lines[1][i].at("status"), "ok") << lines[1][i].dump().substr(0, 300);
+    EXPECT_EQ(pixelsOf(lines[0][i]), pixelsOf(lines[1][i])) << "thumbnail " << i;
   }
 }
 

@@ -54,6 +54,10 @@ class Renderer {
   // A hint that `request` comes next: its scene is parsed on a thread of its own meanwhile,
   // unless it is cached (the GL upload waits for the submit). Errors surface from that submit.
   void prefetch(const RenderRequest& request);
+  // Whether `request`'s scene is still being parsed ahead (with its acceleration structures) for
+  // a prefetch() hint: a submit() of it now would wait for that. A caller with several requests
+  // to draw can draw one whose scene is at hand first.
+  bool scenePending(const RenderRequest& request) const;
   // How many of the requests to come are worth a prefetch() hint: as many as scenes parse side
   // by side (RendererOptions::sceneWorker.processes, 1 without a parser worker).
   std::size_t prefetchDepth() const;

@@ -317,6 +317,22 @@ void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& opt
                 hint, {});
 }
 
+bool SceneCache::inProgress(const SceneSource& source, const SceneLoadOptions& options) const {
+  std::string key;
+  try {
+    key = keyFor(source, options);
+  } catch (const Error&) {
+    return false;
+  }
+  if (key.empty() || key == "demo") return false;
+  for (const Slot& slot : slots_) {
+    if (slot.key == key) return false;
+  }
+  const auto oldest = prefetches_.lower_bound(key);
+  if (oldest == prefetches_.end() || oldest->first != key) return false;
+  return oldest->second.parsed.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
+}
+
 void SceneCache::dropStalePrefetches() {
   const std::uint64_t horizon = 2 * maxPrefetches();
   std::erase_if(prefetches_, [&](const auto& entry) {
