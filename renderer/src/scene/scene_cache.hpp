@@ -107,8 +107,9 @@ class SceneCache {
   // the get() that asks for it then waits for that parse instead of parsing (its errors come
   // from that get()). With `buildTrace`, the same thread then builds the scene's acceleration
   // structures. The upload stays for get(), on the GL thread. At most maxPrefetches() parses
-  // run at once; a hint beyond that is dropped. Hints come in draw order: a hint of the key
-  // hinted just before is the cache's newest scene when drawn, and is not parsed; with the cache
+  // run at once; a hint beyond that is dropped. Hints come in the requests' order (a caller may
+  // draw a later one first while an earlier one is inProgress): a hint of the key hinted just
+  // before is the cache's newest scene when drawn, and is not parsed; with the cache
   // off (a budget of 0) every other hint of a scene starts a parse of its own.
   void prefetch(const SceneSource& source, const SceneLoadOptions& options = {},
                 TraceBuilder buildTrace = {});
