@@ -318,6 +318,10 @@ void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& opt
 }
 
 bool SceneCache::inProgress(const SceneSource& source, const SceneLoadOptions& options) const {
+  if (source.kind == SceneSource::Kind::InlineGlb ||
+      source.kind == SceneSource::Kind::UploadedGltf) {
+    return false;  // keyed by a hash of all its bytes: too dear to ask for on every look
+  }
   std::string key;
   try {
     key = keyFor(source, options);

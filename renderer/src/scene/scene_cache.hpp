@@ -116,7 +116,8 @@ class SceneCache {
   // Whether the scene is being prefetched still: not cached, and its oldest prefetch (parse and
   // structures built ahead) not done. get() would wait for it; once done, or for a scene that is
   // cached, never hinted or cannot be keyed, get() would not wait for a prefetch. Lets the caller
-  // draw a later request first (lghd's render worker).
+  // draw a later request first (lghd's render worker). An uploaded scene is keyed by a hash of
+  // its bytes, too dear to compute on every look: for one it answers false without looking.
   bool inProgress(const SceneSource& source, const SceneLoadOptions& options = {}) const;
   // Scenes hinted ahead: eight per parser process (2 without them, parsed side by side on this
   // process's prefetch threads), at most 64, so that the
