@@ -366,9 +366,12 @@ std::size_t RenderWorker::choosePosition(const JobPiece& piece, const std::vecto
   const bool alone = std::find(taken.begin() + static_cast<std::ptrdiff_t>(head) + 1, taken.end(),
                                false) == taken.end();
   if (alone || !renderer_) return head;
-  // The scenes must be on their way before they are looked at: the first of a batch are not.
-  prefetch(piece.job->tickets[piece.tickets[head]],
-           nextTickets(piece, taken, head, renderer_->prefetchDepth()));
+  // The scenes must be on their way before they are looked at: the first of a batch are not
+  // (after that, the last submit's window holds the head and hinted what follows it).
+  const std::shared_ptr<RenderTicket>& headTicket = piece.job->tickets[piece.tickets[head]];
+  if (std::find(hinted_.begin(), hinted_.end(), headTicket.get()) == hinted_.end()) {
+    prefetch(headTicket, nextTickets(piece, taken, head, renderer_->prefetchDepth()));
+  }
   const auto giveUp = Clock::now() + kDrawAheadWait;
   for (;;) {
     if (const std::optional<std::size_t> atHand = firstAtHand(piece, taken, head)) {
