@@ -53,9 +53,6 @@ int ForwardBlendPass::run(const Inputs& inputs, SurfacePrograms& programs, GpuSc
   }
   std::stable_sort(blended.begin(), blended.end(),
                    [](const Blended& a, const Blended& b) { return a.distance > b.distance; });
-  std::vector<const GpuScene::DrawItem*> items;
-  items.reserve(blended.size());
-  for (const Blended& entry : blended) items.push_back(entry.item);
   bindTargets(targets);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   glViewport(0, 0, targets.width, targets.height);
@@ -71,7 +68,8 @@ int ForwardBlendPass::run(const Inputs& inputs, SurfacePrograms& programs, GpuSc
       inputs.ambient, inputs.maxTessellationLevel};
   const bool disk = inputs.primitives->pointShape == PointShape::Disk;
   std::set<GLuint> prepared;
-  for (const GpuScene::DrawItem* item : items) {
+  for (const Blended& entry : blended) {
+    const GpuScene::DrawItem* item = entry.item;
     const Material& material = inputs.materials->at(item->material);
     const SurfaceProgramKey key = surfaceProgramKey(material, *item, true);
     SurfaceProgram& program = programs.get(key);
@@ -89,7 +87,7 @@ int ForwardBlendPass::run(const Inputs& inputs, SurfacePrograms& programs, GpuSc
   glDepthMask(GL_TRUE);
   glDisable(GL_DEPTH_TEST);
   unbindMaterialSamplers();
-  return static_cast<int>(items.size());
+  return static_cast<int>(blended.size());
 }
 
 }  // namespace lgh
