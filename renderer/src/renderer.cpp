@@ -205,7 +205,7 @@ void Renderer::prefetch(const RenderRequest& request) {
       traces ? impl_->shadowDevice.prefetchBuilder() : SceneCache::TraceBuilder{});
 }
 
-bool Renderer::scenePending(const RenderRequest& request) const {
+std::optional<bool> Renderer::scenePending(const RenderRequest& request) const {
   return impl_->cache.inProgress(request.scene, loadOptionsOf(request));
 }
 

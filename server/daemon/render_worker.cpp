@@ -45,11 +45,6 @@ std::mutex& rendererSetupMutex() {
   return mutex;
 }
 
-bool isUpload(const lgh::SceneSource& scene) {
-  return scene.kind == lgh::SceneSource::Kind::InlineGlb ||
-         scene.kind == lgh::SceneSource::Kind::UploadedGltf;
-}
-
 }  // namespace
 
 const char* workerStateName(RenderWorker::State state) {
@@ -354,9 +349,10 @@ std::optional<std::size_t> RenderWorker::firstAtHand(const JobPiece& piece,
     const RenderTicket& ticket = *piece.job->tickets[piece.tickets[i]];
     // A ticket to skip (cancelled, or its waiter gave up) costs nothing: take it at once.
     if (piece.job->cancelled || ticket.settled()) return i;
-    // An uploaded scene's state is not looked up (Renderer::scenePending): drawn in its turn.
-    if (i != head && isUpload(ticket.request().scene)) continue;
-    if (!renderer_->scenePending(ticket.request())) return i;
+    // A scene whose state is not looked up (an upload: Renderer::scenePending) is drawn in its
+    // turn, never ahead.
+    const std::optional<bool> pending = renderer_->scenePending(ticket.request());
+    if (pending ? !*pending : i == head) return i;
   }
   return std::nullopt;
 }

@@ -56,9 +56,9 @@ class Renderer {
   void prefetch(const RenderRequest& request);
   // Whether `request`'s scene is still being parsed ahead (with its acceleration structures) for
   // a prefetch() hint: a submit() of it now would wait for that. A caller with several requests
-  // to draw can draw one whose scene is at hand first. Always false for an uploaded scene (glTF
-  // or GLB bytes in the request), which is not looked up: its key is a hash of all its bytes.
-  bool scenePending(const RenderRequest& request) const;
+  // to draw can draw one whose scene is at hand first. nullopt for an uploaded scene (glTF or
+  // GLB bytes in the request), which is not looked up: its key is a hash of all its bytes.
+  std::optional<bool> scenePending(const RenderRequest& request) const;
   // How many of the requests to come are worth a prefetch() hint: as many as scenes parse side
   // by side (RendererOptions::sceneWorker.processes, 1 without a parser worker).
   std::size_t prefetchDepth() const;

@@ -317,10 +317,11 @@ void SceneCache::prefetch(const SceneSource& source, const SceneLoadOptions& opt
                 hint, {});
 }
 
-bool SceneCache::inProgress(const SceneSource& source, const SceneLoadOptions& options) const {
+std::optional<bool> SceneCache::inProgress(const SceneSource& source,
+                                           const SceneLoadOptions& options) const {
   if (source.kind == SceneSource::Kind::InlineGlb ||
       source.kind == SceneSource::Kind::UploadedGltf) {
-    return false;  // keyed by a hash of all its bytes: too dear to ask for on every look
+    return std::nullopt;  // keyed by a hash of all its bytes: too dear to ask for on every look
   }
   std::string key;
   try {

@@ -116,9 +116,10 @@ class SceneCache {
   // Whether the scene is being prefetched still: not cached, and its oldest prefetch (parse and
   // structures built ahead) not done. get() would wait for it; once done, or for a scene that is
   // cached, never hinted or cannot be keyed, get() would not wait for a prefetch. Lets the caller
-  // draw a later request first (lghd's render worker). An uploaded scene is keyed by a hash of
-  // its bytes, too dear to compute on every look: for one it answers false without looking.
-  bool inProgress(const SceneSource& source, const SceneLoadOptions& options = {}) const;
+  // draw a later request first (lghd's render worker). nullopt for an uploaded scene, which is
+  // not looked up: its key is a hash of all its bytes, too dear to compute on every look.
+  std::optional<bool> inProgress(const SceneSource& source,
+                                 const SceneLoadOptions& options = {}) const;
   // Scenes hinted ahead: eight per parser process (2 without them, parsed side by side on this
   // process's prefetch threads), at most 64, so that the
   // look-ahead covers a slow asset's parse (a draco or textured asset took 20-56 ms to parse on
