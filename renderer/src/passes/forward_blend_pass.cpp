@@ -68,6 +68,7 @@ int ForwardBlendPass::run(const Inputs& inputs, SurfacePrograms& programs, GpuSc
       inputs.ambient, inputs.maxTessellationLevel};
   const bool disk = inputs.primitives->pointShape == PointShape::Disk;
   std::set<GLuint> prepared;
+  SurfaceDrawState drawState;
   for (const Blended& entry : blended) {
     const GpuScene::DrawItem* item = entry.item;
     const Material& material = inputs.materials->at(item->material);
@@ -78,7 +79,7 @@ int ForwardBlendPass::run(const Inputs& inputs, SurfacePrograms& programs, GpuSc
     }
     glUseProgram(program.id());
     bindMaterial(program, material, gpuScene, item->unlit);
-    drawSurface(program, *item, material, key.displaced);
+    drawSurface(program, *item, material, key.displaced, drawState);
   }
   glBindVertexArray(0);
   glFrontFace(GL_CCW);

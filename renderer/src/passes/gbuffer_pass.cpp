@@ -70,6 +70,7 @@ void GBufferPass::drawOpaque(const Inputs& inputs, GpuScene& gpuScene,
   GLuint currentProgram = 0;
   int currentMaterial = -2;
   bool currentUnlit = false;
+  SurfaceDrawState drawState;
   for (const auto& item : gpuScene.drawItems()) {
     const Material& material = inputs.materials->at(item.material);
     if (material.alphaMode == AlphaMode::Blend) continue;  // ForwardBlendPass draws these
@@ -88,7 +89,7 @@ void GBufferPass::drawOpaque(const Inputs& inputs, GpuScene& gpuScene,
       currentMaterial = item.material;
       currentUnlit = item.unlit;
     }
-    drawSurface(program, item, material, key.displaced);
+    drawSurface(program, item, material, key.displaced, drawState);
   }
 }
 

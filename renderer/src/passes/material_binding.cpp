@@ -41,28 +41,53 @@ glm::vec3 modelSpecular(const Material& m, MaterialModel model) {
   return model == MaterialModel::CookTorrance ? m.classic.f0 : m.classic.specular;
 }
 
+// Sets a program's uniforms, skipping each whose value is the one it already holds
+// (gl::UniformLocations::changed).
 class Uniforms {
  public:
   explicit Uniforms(gl::UniformLocations& locations) : locations_(locations) {}
   GLuint program() const { return locations_.program(); }
-  GLint at(std::string_view name) const { return locations_[name]; }
-  void set(std::string_view name, float v) const { glProgramUniform1f(program(), at(name), v); }
-  void set(std::string_view name, int v) const { glProgramUniform1i(program(), at(name), v); }
-  void set(std::string_view name, GLuint v) const { glProgramUniform1ui(program(), at(name), v); }
-  void set(std::string_view name, bool v) const {
-    glProgramUniform1i(program(), at(name), v ? 1 : 0);
+  void set(std::string_view name, float v) const {
+    if (const auto at = locations_.changed(name, v)) glProgramUniform1f(program(), *at, v);
+  }
+  void set(std::string_view name, int v) const {
+    if (const auto at = locations_.changed(name, v)) glProgramUniform1i(program(), *at, v);
+  }
+  void set(std::string_view name, GLuint v) const {
+    if (const auto at = locations_.changed(name, v)) glProgramUniform1ui(program(), *at, v);
+  }
+  void set(std::string_view name, bool v) const { set(name, v ? 1 : 0); }
+  void set(std::string_view name, const glm::vec2& v) const {
+    if (const auto at = locations_.changed(name, v)) {
+      glProgramUniform2fv(program(), *at, 1, glm::value_ptr(v));
+    }
   }
   void set(std::string_view name, const glm::vec3& v) const {
-    glProgramUniform3fv(program(), at(name), 1, glm::value_ptr(v));
+    if (const auto at = locations_.changed(name, v)) {
+      glProgramUniform3fv(program(), *at, 1, glm::value_ptr(v));
+    }
   }
   void set(std::string_view name, const glm::vec4& v) const {
-    glProgramUniform4fv(program(), at(name), 1, glm::value_ptr(v));
+    if (const auto at = locations_.changed(name, v)) {
+      glProgramUniform4fv(program(), *at, 1, glm::value_ptr(v));
+    }
   }
   void set(std::string_view name, const glm::mat4& v) const {
-    glProgramUniformMatrix4fv(program(), at(name), 1, GL_FALSE, glm::value_ptr(v));
+    if (const auto at = locations_.changed(name, v)) {
+      glProgramUniformMatrix4fv(program(), *at, 1, GL_FALSE, glm::value_ptr(v));
+    }
   }
   void set(std::string_view name, const glm::mat3& v) const {
-    glProgramUniformMatrix3fv(program(), at(name), 1, GL_FALSE, glm::value_ptr(v));
+    if (const auto at = locations_.changed(name, v)) {
+      glProgramUniformMatrix3fv(program(), *at, 1, GL_FALSE, glm::value_ptr(v));
+    }
+  }
+  template <std::size_t N>
+  void set(std::string_view name, const std::array<glm::mat3x2, N>& v) const {
+    if (const auto at = locations_.changed(name, v)) {
+      glProgramUniformMatrix3x2fv(program(), *at, static_cast<GLsizei>(N), GL_FALSE,
+                                  glm::value_ptr(v[0]));
+    }
   }
 
  private:
@@ -74,23 +99,26 @@ void bindTextures(const Uniforms& u, const Material& material, GpuScene& gpu) {
   GLuint texCoord1Mask = 0;
   GLuint twoChannelMask = 0;
   std::array<glm::mat3x2, kMaterialTextureSlots> transforms{};
+  std::array<GLuint, kMaterialTextureSlots> textures{};
+  std::array<GLuint, kMaterialTextureSlots> samplers{};
   const auto slots = materialTextureSlots(material);
   for (GLuint slot = 0; slot < slots.size(); ++slot) {
     const TextureRef& ref = *slots[slot].texture;
     const GpuScene::BoundTexture bound = gpu.texture(ref, slots[slot].usage);
-    glBindTextureUnit(slot, bound.texture);
-    glBindSampler(slot, bound.sampler);
+    textures[slot] = bound.texture;
+    samplers[slot] = bound.sampler;
     if (bound.texture != 0) textureMask |= 1U << slot;
     if (bound.twoChannel) twoChannelMask |= 1U << slot;
     if (ref.texCoord == 1) texCoord1Mask |= 1U << slot;
     transforms[slot] = ref.transform.matrix();
   }
+  // GL 4.4's multi-bind: the units 0..n-1 in one call each instead of two calls per unit.
+  glBindTextures(0, static_cast<GLsizei>(slots.size()), textures.data());
+  glBindSamplers(0, static_cast<GLsizei>(slots.size()), samplers.data());
   u.set("uTextureMask", textureMask);
   u.set("uTexCoord1Mask", texCoord1Mask);
   u.set("uTwoChannelMask", twoChannelMask);
-  glProgramUniformMatrix3x2fv(u.program(), u.at("uUvTransform"),
-                              static_cast<GLsizei>(transforms.size()), GL_FALSE,
-                              glm::value_ptr(transforms[0]));
+  u.set("uUvTransform", transforms);
 }
 
 void setSurfaceDetail(const Uniforms& u, const SurfaceDetailMaterial& s) {
@@ -176,8 +204,8 @@ void setSurfaceFrameUniforms(SurfaceProgram& program, const SurfaceFrame& frame,
   const Uniforms u(program.uniforms);
   u.set("uViewProjection", frame.camera->viewProjection());
   u.set("uCameraPosition", frame.camera->position);
-  glProgramUniform2f(program.id(), u.at("uViewportSize"), static_cast<float>(frame.width),
-                     static_cast<float>(frame.height));
+  u.set("uViewportSize",
+        glm::vec2(static_cast<float>(frame.width), static_cast<float>(frame.height)));
   u.set("uLineWidth", frame.primitives->lineWidth);
   u.set("uPointSize", frame.primitives->pointSize);
   u.set("uPointDisk", pointDisk);
@@ -187,22 +215,32 @@ void setSurfaceFrameUniforms(SurfaceProgram& program, const SurfaceFrame& frame,
 }
 
 void drawSurface(SurfaceProgram& program, const GpuScene::DrawItem& item, const Material& material,
-                 bool displaced) {
+                 bool displaced, SurfaceDrawState& state) {
   // Widened lines and points are quads of either winding: never culled.
-  const bool cull = item.topology == Topology::Triangles && !material.doubleSided;
-  if (cull) {
-    glEnable(GL_CULL_FACE);
-  } else {
-    glDisable(GL_CULL_FACE);
+  const int cull = item.topology == Topology::Triangles && !material.doubleSided ? 1 : 0;
+  if (cull != state.cull) {
+    if (cull == 1) {
+      glEnable(GL_CULL_FACE);
+    } else {
+      glDisable(GL_CULL_FACE);
+    }
+    state.cull = cull;
   }
   // Mirrored instances flip the winding; keep back-face culling right for them.
-  glFrontFace(glm::determinant(glm::mat3(item.world)) < 0.0F ? GL_CW : GL_CCW);
+  const GLenum frontFace = glm::determinant(glm::mat3(item.world)) < 0.0F ? GL_CW : GL_CCW;
+  if (frontFace != state.frontFace) {
+    glFrontFace(frontFace);
+    state.frontFace = frontFace;
+  }
   const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(item.world));
   const Uniforms u(program.uniforms);
   u.set("uWorld", item.world);
   u.set("uNormalMatrix", normalMatrix);
   u.set("uHasTangents", item.tangents);
-  glBindVertexArray(item.vertexArray);
+  if (item.vertexArray != state.vertexArray) {
+    glBindVertexArray(item.vertexArray);
+    state.vertexArray = item.vertexArray;
+  }
   GLenum mode = GL_TRIANGLES;
   if (item.topology == Topology::Lines) mode = GL_LINES;
   if (item.topology == Topology::Points) mode = GL_POINTS;

@@ -39,10 +39,18 @@ struct SurfaceFrame {
 };
 void setSurfaceFrameUniforms(SurfaceProgram& program, const SurfaceFrame& frame, bool pointDisk);
 
+// The fixed-function state that drawSurface set last in a pass (unknown at first), so that it sets
+// only what changes between consecutive draws.
+struct SurfaceDrawState {
+  int cull = -1;  // -1 unknown, 0 off, 1 on
+  GLenum frontFace = GL_NONE;
+  GLuint vertexArray = ~0U;  // ~0: unknown
+};
+
 // One draw item: its transforms, face culling (double-sided materials and lines and points are
 // not culled), and the draw call (GL_PATCHES when displaced).
 void drawSurface(SurfaceProgram& program, const GpuScene::DrawItem& item, const Material& material,
-                 bool displaced);
+                 bool displaced, SurfaceDrawState& state);
 
 // Unbinds the samplers of the material slots.
 void unbindMaterialSamplers();
