@@ -1,6 +1,6 @@
 #version 450 core
 // G-buffer (and forward) pass, vertex stage. Inputs: mesh vertices (see
-// renderer/src/scene/gpu_scene.cpp for the attribute locations), the instance's world matrix and
+// renderer/src/scene/gpu_scene.cpp for the attribute locations), the draw's world matrix and
 // the camera's view-projection. Lines and points go on to gbuffer_lines.geom /
 // gbuffer_points.geom, which widen them on screen; displaced triangles to gbuffer_displace.tesc.
 // LGH_GOURAUD: the classic models' per-vertex lighting (the lecture's Gouraud shading): every
@@ -15,8 +15,10 @@ layout(location = 3) in vec2 inUv0;
 layout(location = 4) in vec2 inUv1;
 layout(location = 5) in vec4 inColor;
 
-uniform mat4 uWorld;
-uniform mat3 uNormalMatrix;
+// Per draw: instanced attributes that the draw's base instance selects from the scene's draw
+// transforms (GpuScene::kDrawTransformLocation).
+layout(location = 6) in mat4 inWorld;
+layout(location = 10) in mat3 inNormalMatrix;
 uniform mat4 uViewProjection;
 
 out VertexData { GBUFFER_VERTEX_MEMBERS } vout;
@@ -47,11 +49,11 @@ void lightVertex(vec3 position, vec3 normal) {
 #endif
 
 void main() {
-  vec4 world = uWorld * vec4(inPosition, 1.0);
+  vec4 world = inWorld * vec4(inPosition, 1.0);
   vout.worldPosition = world.xyz;
   vout.basePosition = world.xyz;
-  vout.normal = uNormalMatrix * inNormal;
-  vout.tangent = vec4(mat3(uWorld) * inTangent.xyz, inTangent.w);
+  vout.normal = inNormalMatrix * inNormal;
+  vout.tangent = vec4(mat3(inWorld) * inTangent.xyz, inTangent.w);
   vout.uv0 = inUv0;
   vout.uv1 = inUv1;
   vout.color = inColor;

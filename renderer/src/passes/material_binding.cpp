@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <string_view>
 
-#include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "passes/brdf_features.hpp"
@@ -227,15 +226,13 @@ void drawSurface(SurfaceProgram& program, const GpuScene::DrawItem& item, const 
     state.cull = cull;
   }
   // Mirrored instances flip the winding; keep back-face culling right for them.
-  const GLenum frontFace = glm::determinant(glm::mat3(item.world)) < 0.0F ? GL_CW : GL_CCW;
+  const GLenum frontFace = item.mirrored ? GL_CW : GL_CCW;
   if (frontFace != state.frontFace) {
     glFrontFace(frontFace);
     state.frontFace = frontFace;
   }
-  const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(item.world));
+  // The item's transforms come from the vertex array's per-draw attributes (its base instance).
   const Uniforms u(program.uniforms);
-  u.set("uWorld", item.world);
-  u.set("uNormalMatrix", normalMatrix);
   u.set("uHasTangents", item.tangents);
   if (item.vertexArray != state.vertexArray) {
     glBindVertexArray(item.vertexArray);
@@ -249,9 +246,10 @@ void drawSurface(SurfaceProgram& program, const GpuScene::DrawItem& item, const 
     mode = GL_PATCHES;
   }
   const auto firstByte = static_cast<std::uintptr_t>(item.firstIndex) * sizeof(std::uint32_t);
-  glDrawElementsBaseVertex(mode, item.indexCount, GL_UNSIGNED_INT,
-                           reinterpret_cast<const void*>(firstByte),  // NOLINT: GL's offset type
-                           item.baseVertex);
+  glDrawElementsInstancedBaseVertexBaseInstance(
+      mode, item.indexCount, GL_UNSIGNED_INT,
+      reinterpret_cast<const void*>(firstByte),  // NOLINT: GL's offset type
+      1, item.baseVertex, item.drawIndex);
 }
 
 void unbindMaterialSamplers() {

@@ -1,20 +1,32 @@
 #include "scene/gpu_scene.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 
 #include <fmt/format.h>
+#include <glm/gtc/matrix_inverse.hpp>
 
 namespace lgh {
 namespace {
 
-void setAttribute(GLuint vao, GLuint location, GLint size, GLuint offset) {
+constexpr GLuint kVertexBinding = 0;
+constexpr GLuint kDrawTransformBinding = 1;
+
+void setAttribute(GLuint vao, GLuint location, GLint size, GLuint offset,
+                  GLuint binding = kVertexBinding) {
   glEnableVertexArrayAttrib(vao, location);
   glVertexArrayAttribFormat(vao, location, size, GL_FLOAT, GL_FALSE, offset);
-  glVertexArrayAttribBinding(vao, location, 0);
+  glVertexArrayAttribBinding(vao, location, binding);
 }
+
+// One draw item's transforms as the vertex array reads them (GpuScene::kDrawTransformLocation).
+struct DrawTransform {
+  glm::mat4 world;
+  std::array<glm::vec4, 3> normal;  // the normal matrix's columns, each padded to 16 bytes
+};
 
 bool usesMipmaps(int minFilter) {
   return minFilter == GL_NEAREST_MIPMAP_NEAREST || minFilter == GL_LINEAR_MIPMAP_NEAREST ||
@@ -46,15 +58,18 @@ GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArr
   uploadGeometry(scene, layout, staged);
   for (const MeshInstance& instance : scene.instances) {
     if (instance.mesh < 0 || static_cast<size_t>(instance.mesh) >= scene.meshes.size()) continue;
-    forEachPrimitive(
-        scene, layout, static_cast<size_t>(instance.mesh),
-        [&](const Primitive& primitive, const PrimitiveRange& range) {
-          if (range.indexCount == 0) return;
-          drawItems_.push_back({0, range.indexCount, range.firstIndex, range.baseVertex,
-                                primitive.material, instance.world, primitive.topology,
-                                primitive.unlit, primitive.tangents, &primitive});
-        });
+    forEachPrimitive(scene, layout, static_cast<size_t>(instance.mesh),
+                     [&](const Primitive& primitive, const PrimitiveRange& range) {
+                       if (range.indexCount == 0) return;
+                       const auto drawIndex = static_cast<GLuint>(drawItems_.size());
+                       const bool mirrored = glm::determinant(glm::mat3(instance.world)) < 0.0F;
+                       drawItems_.push_back({0, range.indexCount, range.firstIndex,
+                                             range.baseVertex, primitive.material, instance.world,
+                                             primitive.topology, primitive.unlit,
+                                             primitive.tangents, &primitive, drawIndex, mirrored});
+                     });
   }
+  uploadDrawTransforms();
   // The materials' own textures now, so that a scene's first frame and its load time carry them.
   for (const Material& material : scene.materials) {
     for (const MaterialTextureSlot& slot : materialTextureSlots(material)) {
@@ -90,6 +105,19 @@ void GpuScene::makeVertexArrays() {
   setAttribute(vao, 3, 2, offsetof(Vertex, uv0));
   setAttribute(vao, 4, 2, offsetof(Vertex, uv1));
   setAttribute(vao, 5, 4, offsetof(Vertex, color));
+  glVertexArrayVertexBuffer(vao, kDrawTransformBinding, drawTransforms_.id(), 0,
+                            sizeof(DrawTransform));
+  glVertexArrayBindingDivisor(vao, kDrawTransformBinding, 1);
+  for (GLuint column = 0; column < 4; ++column) {
+    setAttribute(vao, kDrawTransformLocation + column, 4,
+                 offsetof(DrawTransform, world) + column * sizeof(glm::vec4),
+                 kDrawTransformBinding);
+  }
+  for (GLuint column = 0; column < 3; ++column) {
+    setAttribute(vao, kDrawTransformLocation + 4 + column, 3,
+                 offsetof(DrawTransform, normal) + column * sizeof(glm::vec4),
+                 kDrawTransformBinding);
+  }
   for (DrawItem& item : drawItems_) item.vertexArray = vao;
   vertexArrays_ = true;
 }
@@ -137,6 +165,20 @@ void GpuScene::uploadGeometry(const Scene& scene, const GeometryLayout& layout,
           }
         });
   }
+}
+
+void GpuScene::uploadDrawTransforms() {
+  std::vector<DrawTransform> transforms(std::max<std::size_t>(drawItems_.size(), 1));
+  for (std::size_t i = 0; i < drawItems_.size(); ++i) {
+    const glm::mat3 normal = glm::inverseTranspose(glm::mat3(drawItems_[i].world));
+    transforms[i].world = drawItems_[i].world;
+    for (int column = 0; column < 3; ++column) {
+      transforms[i].normal[static_cast<std::size_t>(column)] = glm::vec4(normal[column], 0.0F);
+    }
+  }
+  const auto bytes = static_cast<GLsizeiptr>(transforms.size() * sizeof(DrawTransform));
+  glNamedBufferStorage(drawTransforms_.id(), bytes, transforms.data(), 0);
+  geometryBytes_ += static_cast<std::size_t>(bytes);
 }
 
 const GpuScene::UploadedImage* GpuScene::imageTexture(int image, TextureUsage usage,

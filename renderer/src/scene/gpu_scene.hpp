@@ -66,7 +66,16 @@ class GpuScene {
     bool unlit = false;                    // lines and points without normals
     bool tangents = false;                 // the vertices carry a tangent frame
     const Primitive* primitive = nullptr;  // the scene's, for centreOf
+    // The item's place in drawItems(), and so its base instance: the vertex array's per-draw
+    // attributes (kDrawTransformLocation) read its transforms at that index.
+    GLuint drawIndex = 0;
+    bool mirrored = false;  // the world matrix flips the winding (negative determinant)
   };
+  // The per-draw attributes of the vertex array, from the scene's buffer of draw transforms
+  // (one per draw item, instanced with divisor 1): the world matrix's columns at locations 6-9 and
+  // the normal matrix's (inverse transpose) at 10-12, as glsl/gbuffer.vert declares them. A draw
+  // picks its own with its base instance, so no uniform changes between draws.
+  static constexpr GLuint kDrawTransformLocation = 6;
   // The world-space centre of an item's bounds, for sorting blended surfaces back to front. Only
   // blended items need it, so it is computed when asked: one pass over the primitive's vertices,
   // which for every item of a large scene was a noticeable part of a new scene's upload on the
@@ -115,6 +124,7 @@ class GpuScene {
   // vertex-array validation were per primitive before, which on NVIDIA's driver made most of
   // a many-part asset's upload.
   void uploadGeometry(const Scene& scene, const GeometryLayout& layout, const StagedScene* staged);
+  void uploadDrawTransforms();
 
   const Scene& scene_;
   GpuSceneOptions options_;
@@ -122,6 +132,7 @@ class GpuScene {
   std::vector<DrawItem> drawItems_;
   gl::Buffer vertices_;
   gl::Buffer indices_;
+  gl::Buffer drawTransforms_;  // per draw item (kDrawTransformLocation)
   gl::VertexArray vertexArray_ = gl::VertexArray::empty();  // made by makeVertexArrays()
   bool vertexArrays_ = false;
   gl::Fence uploaded_;  // uploadShared()'s, until adopt()
