@@ -203,7 +203,7 @@ const GpuScene::UploadedImage* GpuScene::imageTexture(int image, TextureUsage us
   }
   UploadedTexture uploaded =
       uploadTexture(pixels, precompressed, kind, options_.compression, capabilities_, warnings_,
-                    stagedPixels ? &*stagedPixels : nullptr);
+                    stagedPixels ? &*stagedPixels : nullptr, options_.recycledTextures.get());
   textureBytes_ += uploaded.bytes;
   memory_.bytes += uploaded.bytes;
   memory_.uncompressedBytes += uploaded.uncompressedBytes;

@@ -32,6 +32,9 @@ struct GpuSceneOptions {
   // The device's formats, when the caller knows them (the scene cache asks once per context:
   // four format queries per new scene were render-thread time); queried when not.
   std::optional<TextureCapabilities> capabilities;
+  // Where RGBA8 textures take their storage and give it back when the scene is freed (null: each
+  // has its own). Only for scenes made and freed on one thread.
+  std::shared_ptr<gl::RecycledTextures> recycledTextures;
 };
 
 class GpuScene {
@@ -113,7 +116,7 @@ class GpuScene {
   void makeVertexArrays();
 
   struct UploadedImage {
-    gl::Texture texture;
+    gl::RecycledTexture texture;
     bool twoChannel = false;
   };
   GLuint samplerFor(const Sampler& sampler);

@@ -56,6 +56,7 @@ std::unique_ptr<gl::Worker> makeGlWorker(const RendererOptions& options, const G
 }
 
 constexpr std::int64_t kDefaultStagingBytes = std::int64_t{128} << 20;
+constexpr std::size_t kRecycledTextureBytes = std::size_t{64} << 20;
 
 std::unique_ptr<gl::StagingMemory> makeStaging(const RendererOptions& options,
                                                const GlContext* context, bool glWorker) {
@@ -108,6 +109,7 @@ SceneCache::SceneCache(const RendererOptions& options, const GlContext* context)
   glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &anisotropy);
   maxAnisotropy_ = anisotropy;
   textureCapabilities_ = TextureCapabilities::query();
+  if (!glWorker_) recycledTextures_ = gl::RecycledTextures::create(kRecycledTextureBytes);
 }
 
 SceneCache::~SceneCache() = default;
@@ -371,8 +373,9 @@ void SceneCache::startPrefetch(const std::string& key, std::shared_ptr<const Sce
     // The parsers serve it in hint order, whenever its thread gets to them.
     ParserTurn turn;
     if (parsers_) turn.emplace(parsers_->reserveTurn());
+    // On the GL worker (which is when this is used): no recycled textures.
     const GpuSceneOptions uploadOptions{maxAnisotropy_, options.textureCompression,
-                                        textureCapabilities_};
+                                        textureCapabilities_, nullptr};
     auto parsing = std::make_shared<std::packaged_task<Parsed()>>(
         [rendererOptions = options_, parsers = parsers_.get(), source, options, buildTrace,
          turn = std::move(turn), glWorker = glWorker_.get(), uploadOptions,
@@ -450,12 +453,13 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
   } else {
     const StagedScene* staged = parsed.staged ? &*parsed.staged : nullptr;
     try {
-      entry->gpu = GpuSceneOwner(
-          new GpuScene(  // NOLINT(cppcoreguidelines-owning-memory): owned at once
-              entry->scene,
-              GpuSceneOptions{maxAnisotropy_, options.textureCompression, textureCapabilities_},
-              staged),
-          GpuSceneDeleter(glWorker_.get()));
+      entry->gpu =
+          GpuSceneOwner(new GpuScene(  // NOLINT(cppcoreguidelines-owning-memory): owned at once
+                            entry->scene,
+                            GpuSceneOptions{maxAnisotropy_, options.textureCompression,
+                                            textureCapabilities_, recycledTextures_},
+                            staged),
+                        GpuSceneDeleter(glWorker_.get()));
     } catch (...) {
       // Copies from the region may have been issued before the failure.
       if (staged != nullptr) staging_->retire(std::move(parsed.staged->region));

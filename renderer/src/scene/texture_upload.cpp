@@ -92,12 +92,20 @@ void setLevelRange(GLuint texture, int levels) {
   glTextureParameteri(texture, GL_TEXTURE_MAX_LEVEL, levels - 1);
 }
 
-UploadedTexture uploadPlain(const Image8& image, bool srgb, const StagedPixels* staged) {
+UploadedTexture uploadPlain(const Image8& image, bool srgb, const StagedPixels* staged,
+                            gl::RecycledTextures* recycled) {
   UploadedTexture result;
-  result.texture = gl::Texture(GL_TEXTURE_2D);
   const int levels = mipLevels(image.width, image.height);
+  result.bytes = rgba8Bytes(image.width, image.height, levels);
+  const gl::TextureShape shape{srgb ? GLenum{GL_SRGB8_ALPHA8} : GLenum{GL_RGBA8}, image.width,
+                               image.height, levels};
+  if (recycled != nullptr) {
+    result.texture = recycled->take(shape, result.bytes);
+  } else {
+    result.texture = gl::RecycledTexture(gl::Texture(GL_TEXTURE_2D));
+    glTextureStorage2D(result.texture.id(), shape.levels, shape.format, shape.width, shape.height);
+  }
   const GLuint id = result.texture.id();
-  glTextureStorage2D(id, levels, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, image.width, image.height);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   if (staged != nullptr) {
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, staged->buffer);
@@ -109,7 +117,6 @@ UploadedTexture uploadPlain(const Image8& image, bool srgb, const StagedPixels* 
                         image.pixels.data());
   }
   glGenerateTextureMipmap(id);
-  result.bytes = rgba8Bytes(image.width, image.height, levels);
   result.uncompressedBytes = result.bytes;
   result.format = srgb ? "SRGB8_ALPHA8" : "RGBA8";
   return result;
@@ -118,7 +125,7 @@ UploadedTexture uploadPlain(const Image8& image, bool srgb, const StagedPixels* 
 // Compression on upload: the driver encodes each level of the CPU-built chain.
 UploadedTexture uploadCompressing(const Image8& image, BlockFormat format, bool srgb) {
   UploadedTexture result;
-  result.texture = gl::Texture(GL_TEXTURE_2D);
+  result.texture = gl::RecycledTexture(gl::Texture(GL_TEXTURE_2D));
   const int levels = mipLevels(image.width, image.height);
   const GLuint id = result.texture.id();
   glTextureStorage2D(id, levels, blockEnum(format, srgb), image.width, image.height);
@@ -145,7 +152,7 @@ UploadedTexture uploadCompressing(const Image8& image, BlockFormat format, bool 
 // by the driver): minified, it would alias otherwise.
 UploadedTexture uploadBlocks(const BlockCompressedImage& blocks, bool srgb) {
   UploadedTexture result;
-  result.texture = gl::Texture(GL_TEXTURE_2D);
+  result.texture = gl::RecycledTexture(gl::Texture(GL_TEXTURE_2D));
   const auto fileLevels = static_cast<int>(blocks.levels.size());
   const int levels = fileLevels == 1 ? mipLevels(blocks.width, blocks.height) : fileLevels;
   const GLuint id = result.texture.id();
@@ -256,7 +263,8 @@ std::vector<Image8> buildMipChain(const Image8& image, bool srgb) {
 UploadedTexture uploadTexture(const Image8& image, const BlockCompressedImage* precompressed,
                               TextureUsage usage, TextureCompression compression,
                               const TextureCapabilities& capabilities,
-                              std::vector<std::string>& warnings, const StagedPixels* staged) {
+                              std::vector<std::string>& warnings, const StagedPixels* staged,
+                              gl::RecycledTextures* recycled) {
   const bool srgb = usage == TextureUsage::Color;
   if (precompressed != nullptr) {
     const bool colorBlocks = precompressed->format <= BlockFormat::Bc3;
@@ -280,7 +288,7 @@ UploadedTexture uploadTexture(const Image8& image, const BlockCompressedImage* p
       return uploadCompressing(image, format, srgb);
     }
   }
-  return uploadPlain(image, srgb, staged);
+  return uploadPlain(image, srgb, staged, recycled);
 }
 
 }  // namespace lgh

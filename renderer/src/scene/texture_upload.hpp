@@ -10,6 +10,7 @@
 #include <string>
 
 #include "gl/gl_objects.hpp"
+#include "gl/recycled_textures.hpp"
 #include "lgh/request.hpp"
 #include "scene/block_compression.hpp"
 #include "scene/scene.hpp"
@@ -17,7 +18,7 @@
 namespace lgh {
 
 struct UploadedTexture {
-  gl::Texture texture;
+  gl::RecycledTexture texture;
   std::size_t bytes = 0;              // GPU bytes, every level (compressed: the driver's sizes)
   std::size_t uncompressedBytes = 0;  // what the RGBA8 texture would take
   bool compressed = false;
@@ -40,14 +41,16 @@ struct StagedPixels {
 };
 
 // `precompressed` (may be null): the image's blocks as loaded. `staged` (may be null): used when
-// the texture is uploaded as decoded RGBA8. Throws lgh::Error(Internal) when the driver refuses a
-// compressed upload it claims to support. Warnings (a usage the blocks cannot serve, a format the
-// device lacks) go to `warnings`.
+// the texture is uploaded as decoded RGBA8. `recycled` (may be null): where an RGBA8 texture
+// takes its storage (block-compressed ones have storage of their own). Throws lgh::Error(Internal)
+// when the driver refuses a compressed upload it claims to support. Warnings (a usage the blocks
+// cannot serve, a format the device lacks) go to `warnings`.
 UploadedTexture uploadTexture(const Image8& image, const BlockCompressedImage* precompressed,
                               TextureUsage usage, TextureCompression compression,
                               const TextureCapabilities& capabilities,
                               std::vector<std::string>& warnings,
-                              const StagedPixels* staged = nullptr);
+                              const StagedPixels* staged = nullptr,
+                              gl::RecycledTextures* recycled = nullptr);
 
 // The mip chain of `image` below level 0, halving to 1 x 1 (2x2 box filter; `srgb`: averaged in
 // linear light).
