@@ -78,7 +78,7 @@ int ForwardBlendPass::run(const Inputs& inputs, SurfacePrograms& programs, GpuSc
       setSurfaceFrameUniforms(program, frame, item->topology == Topology::Points && disk);
     }
     glUseProgram(program.id());
-    bindMaterial(program, material, gpuScene, item->unlit);
+    bindMaterial(program, material, gpuScene, item->unlit, drawState);
     drawSurface(program, *item, material, key.displaced, drawState);
   }
   glBindVertexArray(0);

@@ -2,6 +2,8 @@
 // renderer owns them and resizes them when the output size changes.
 #pragma once
 
+#include <array>
+
 #include "gl/gl_objects.hpp"
 
 namespace lgh {
@@ -17,6 +19,9 @@ struct GBufferTargets {
   gl::Texture layers{GL_TEXTURE_2D};    // RGBA32UI: material layer parameters (gbuffer.glsl)
   gl::Texture depth{GL_TEXTURE_2D};     // DEPTH_COMPONENT32F
   gl::Framebuffer framebuffer;
+  // The framebuffer's draw buffers as the G-buffer pass set them last (none yet: all GL_NONE):
+  // setting them changes the framebuffer, which the driver validates again at the next draw.
+  std::array<GLenum, 6> drawBuffers{};
 };
 
 // What a frame is read back as, and the target the composite pass writes it to.

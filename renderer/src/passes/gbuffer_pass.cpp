@@ -41,14 +41,17 @@ void GBufferPass::run(const Inputs& inputs, GpuScene& gpuScene, FrameTargets& ta
   unbindMaterialSamplers();
 }
 
-void GBufferPass::prepareTargets(const Inputs& inputs, const FrameTargets& targets) {
+void GBufferPass::prepareTargets(const Inputs& inputs, FrameTargets& targets) {
   // Draw buffer i is colour attachment i (passes/frame_targets.cpp); the last is the layers'.
   std::array<GLenum, 6> buffers{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
                                 GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5};
   if (!inputs.writeEmissive && !inputs.clearEveryTarget) buffers[4] = GL_NONE;
   if (!inputs.writeLayers && !inputs.clearEveryTarget) buffers[5] = GL_NONE;
-  glNamedFramebufferDrawBuffers(targets.gbuffer.framebuffer.id(),
-                                static_cast<GLsizei>(buffers.size()), buffers.data());
+  if (buffers != targets.gbuffer.drawBuffers) {
+    glNamedFramebufferDrawBuffers(targets.gbuffer.framebuffer.id(),
+                                  static_cast<GLsizei>(buffers.size()), buffers.data());
+    targets.gbuffer.drawBuffers = buffers;
+  }
   const std::array<float, 4> zero{0, 0, 0, 0};
   glClearBufferfv(GL_COLOR, 0, zero.data());  // the coverage
   if (inputs.clearEveryTarget) {
@@ -85,7 +88,7 @@ void GBufferPass::drawOpaque(const Inputs& inputs, GpuScene& gpuScene,
       currentMaterial = -2;
     }
     if (item.material != currentMaterial || item.unlit != currentUnlit) {
-      bindMaterial(program, material, gpuScene, item.unlit);
+      bindMaterial(program, material, gpuScene, item.unlit, drawState);
       currentMaterial = item.material;
       currentUnlit = item.unlit;
     }

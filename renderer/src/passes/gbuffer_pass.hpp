@@ -53,7 +53,7 @@ class GBufferPass {
 
  private:
   // Picks the targets the frame writes (draw buffers) and clears the coverage and the depth.
-  void prepareTargets(const Inputs& inputs, const FrameTargets& targets);
+  void prepareTargets(const Inputs& inputs, FrameTargets& targets);
   // One draw of every opaque surface, with the depth and colour state the caller set.
   void drawOpaque(const Inputs& inputs, GpuScene& gpuScene, const FrameTargets& targets);
 

@@ -93,7 +93,31 @@ class Uniforms {
   gl::UniformLocations& locations_;
 };
 
-void bindTextures(const Uniforms& u, const Material& material, GpuScene& gpu) {
+// Binds units [first, last] of `textures` and `samplers` where they differ from `state`'s.
+void bindChangedUnits(const std::array<GLuint, kMaterialTextureSlots>& textures,
+                      const std::array<GLuint, kMaterialTextureSlots>& samplers,
+                      SurfaceDrawState& state) {
+  std::size_t first = kMaterialTextureSlots;
+  std::size_t last = 0;
+  for (std::size_t unit = 0; unit < kMaterialTextureSlots; ++unit) {
+    if (!state.texturesKnown || textures[unit] != state.textures[unit] ||
+        samplers[unit] != state.samplers[unit]) {
+      first = std::min(first, unit);
+      last = unit;
+    }
+  }
+  if (first == kMaterialTextureSlots) return;
+  // GL 4.4's multi-bind: the changed units in one call each instead of two calls per unit.
+  const auto count = static_cast<GLsizei>(last - first + 1);
+  glBindTextures(static_cast<GLuint>(first), count, &textures[first]);
+  glBindSamplers(static_cast<GLuint>(first), count, &samplers[first]);
+  state.textures = textures;
+  state.samplers = samplers;
+  state.texturesKnown = true;
+}
+
+void bindTextures(const Uniforms& u, const Material& material, GpuScene& gpu,
+                  SurfaceDrawState& state) {
   GLuint textureMask = 0;
   GLuint texCoord1Mask = 0;
   GLuint twoChannelMask = 0;
@@ -111,9 +135,7 @@ void bindTextures(const Uniforms& u, const Material& material, GpuScene& gpu) {
     if (ref.texCoord == 1) texCoord1Mask |= 1U << slot;
     transforms[slot] = ref.transform.matrix();
   }
-  // GL 4.4's multi-bind: the units 0..n-1 in one call each instead of two calls per unit.
-  glBindTextures(0, static_cast<GLsizei>(slots.size()), textures.data());
-  glBindSamplers(0, static_cast<GLsizei>(slots.size()), samplers.data());
+  bindChangedUnits(textures, samplers, state);
   u.set("uTextureMask", textureMask);
   u.set("uTexCoord1Mask", texCoord1Mask);
   u.set("uTwoChannelMask", twoChannelMask);
@@ -167,10 +189,10 @@ SurfaceProgramKey surfaceProgramKey(const Material& material, const GpuScene::Dr
   return key;
 }
 
-void bindMaterial(SurfaceProgram& program, const Material& material, GpuScene& gpuScene,
-                  bool unlit) {
+void bindMaterial(SurfaceProgram& program, const Material& material, GpuScene& gpuScene, bool unlit,
+                  SurfaceDrawState& state) {
   const Uniforms u(program.uniforms);
-  bindTextures(u, material, gpuScene);
+  bindTextures(u, material, gpuScene, state);
   const MaterialModel model = effectiveModel(material, unlit);
   u.set("uBaseColorFactor", material.baseColorFactor);
   u.set("uMetallicFactor", material.metallicFactor);

@@ -4,6 +4,7 @@
 // one draw call.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "lgh/request.hpp"
@@ -23,10 +24,6 @@ std::uint32_t materialFeatures(const Material& material, const GpuScene::DrawIte
 SurfaceProgramKey surfaceProgramKey(const Material& material, const GpuScene::DrawItem& item,
                                     bool forward);
 
-// Sets every material uniform of `program` and binds the material's textures and samplers.
-void bindMaterial(SurfaceProgram& program, const Material& material, GpuScene& gpuScene,
-                  bool unlit);
-
 // What every surface program of a frame shares.
 struct SurfaceFrame {
   const CameraMatrices* camera = nullptr;
@@ -39,13 +36,21 @@ struct SurfaceFrame {
 };
 void setSurfaceFrameUniforms(SurfaceProgram& program, const SurfaceFrame& frame, bool pointDisk);
 
-// The fixed-function state that drawSurface set last in a pass (unknown at first), so that it sets
-// only what changes between consecutive draws.
+// The state that bindMaterial and drawSurface set last in a pass (unknown at first), so that they
+// set only what changes between consecutive draws.
 struct SurfaceDrawState {
   int cull = -1;  // -1 unknown, 0 off, 1 on
   GLenum frontFace = GL_NONE;
   GLuint vertexArray = ~0U;  // ~0: unknown
+  bool texturesKnown = false;
+  std::array<GLuint, kMaterialTextureSlots> textures{};  // by unit (= material slot)
+  std::array<GLuint, kMaterialTextureSlots> samplers{};
 };
+
+// Sets the material uniforms of `program` (those that changed) and binds the material's textures
+// and samplers (the units that changed).
+void bindMaterial(SurfaceProgram& program, const Material& material, GpuScene& gpuScene, bool unlit,
+                  SurfaceDrawState& state);
 
 // One draw item: its transforms, face culling (double-sided materials and lines and points are
 // not culled), and the draw call (GL_PATCHES when displaced).
