@@ -132,10 +132,8 @@ void GpuScene::uploadGeometry(const Scene& scene, const GeometryLayout& layout,
                               const StagedScene* staged) {
   const auto vertexBytes = static_cast<GLsizeiptr>(layout.vertexBytes());
   const auto indexBytes = static_cast<GLsizeiptr>(layout.indexBytes());
-  glNamedBufferStorage(vertices_.id(), std::max<GLsizeiptr>(vertexBytes, 1), nullptr,
-                       GL_DYNAMIC_STORAGE_BIT);
-  glNamedBufferStorage(indices_.id(), std::max<GLsizeiptr>(indexBytes, 1), nullptr,
-                       GL_DYNAMIC_STORAGE_BIT);
+  vertices_ = takeBuffer(vertexBytes);
+  indices_ = takeBuffer(indexBytes);
   geometryBytes_ = static_cast<std::size_t>(vertexBytes + indexBytes);
   if (staged != nullptr) {
     // Laid out there as here (scene/geometry_layout.hpp): one copy each.
@@ -177,8 +175,18 @@ void GpuScene::uploadDrawTransforms() {
     }
   }
   const auto bytes = static_cast<GLsizeiptr>(transforms.size() * sizeof(DrawTransform));
-  glNamedBufferStorage(drawTransforms_.id(), bytes, transforms.data(), 0);
+  drawTransforms_ = takeBuffer(bytes);
+  glNamedBufferSubData(drawTransforms_.id(), 0, bytes, transforms.data());
   geometryBytes_ += static_cast<std::size_t>(bytes);
+}
+
+gl::RecycledBuffer GpuScene::takeBuffer(GLsizeiptr bytes) {
+  bytes = std::max<GLsizeiptr>(bytes, 1);
+  if (options_.recycledBuffers == nullptr || bytes > kMaxRecycledBufferBytes) {
+    return gl::RecycledBuffer(gl::makeStorage(gl::BufferShape{bytes}));
+  }
+  const gl::BufferShape shape = gl::BufferShape::holding(bytes);
+  return options_.recycledBuffers->take(shape, gl::storageBytes(shape));
 }
 
 const GpuScene::UploadedImage* GpuScene::imageTexture(int image, TextureUsage usage,

@@ -32,9 +32,10 @@ struct GpuSceneOptions {
   // The device's formats, when the caller knows them (the scene cache asks once per context:
   // four format queries per new scene were render-thread time); queried when not.
   std::optional<TextureCapabilities> capabilities;
-  // Where RGBA8 textures take their storage and give it back when the scene is freed (null: each
-  // has its own). Only for scenes made and freed on one thread.
+  // Where RGBA8 textures and the geometry's buffers take their storage and give it back when the
+  // scene is freed (null: each has its own). Only for scenes made and freed on one thread.
   std::shared_ptr<gl::RecycledTextures> recycledTextures;
+  std::shared_ptr<gl::RecycledBuffers> recycledBuffers;
 };
 
 class GpuScene {
@@ -133,9 +134,13 @@ class GpuScene {
   GpuSceneOptions options_;
   TextureCapabilities capabilities_;
   std::vector<DrawItem> drawItems_;
-  gl::Buffer vertices_;
-  gl::Buffer indices_;
-  gl::Buffer drawTransforms_;  // per draw item (kDrawTransformLocation)
+  // A buffer with at least `bytes` usable bytes (recycled up to kMaxRecycledBufferBytes).
+  gl::RecycledBuffer takeBuffer(GLsizeiptr bytes);
+  static constexpr GLsizeiptr kMaxRecycledBufferBytes = GLsizeiptr{16} << 20;
+
+  gl::RecycledBuffer vertices_;
+  gl::RecycledBuffer indices_;
+  gl::RecycledBuffer drawTransforms_;  // per draw item (kDrawTransformLocation)
   gl::VertexArray vertexArray_ = gl::VertexArray::empty();  // made by makeVertexArrays()
   bool vertexArrays_ = false;
   gl::Fence uploaded_;  // uploadShared()'s, until adopt()

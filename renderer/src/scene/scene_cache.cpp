@@ -57,6 +57,7 @@ std::unique_ptr<gl::Worker> makeGlWorker(const RendererOptions& options, const G
 
 constexpr std::int64_t kDefaultStagingBytes = std::int64_t{128} << 20;
 constexpr std::size_t kRecycledTextureBytes = std::size_t{64} << 20;
+constexpr std::size_t kRecycledBufferBytes = std::size_t{32} << 20;
 
 std::unique_ptr<gl::StagingMemory> makeStaging(const RendererOptions& options,
                                                const GlContext* context, bool glWorker) {
@@ -109,7 +110,10 @@ SceneCache::SceneCache(const RendererOptions& options, const GlContext* context)
   glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &anisotropy);
   maxAnisotropy_ = anisotropy;
   textureCapabilities_ = TextureCapabilities::query();
-  if (!glWorker_) recycledTextures_ = gl::RecycledTextures::create(kRecycledTextureBytes);
+  if (!glWorker_) {
+    recycledTextures_ = gl::RecycledTextures::create(kRecycledTextureBytes);
+    recycledBuffers_ = gl::RecycledBuffers::create(kRecycledBufferBytes);
+  }
 }
 
 SceneCache::~SceneCache() = default;
@@ -375,7 +379,7 @@ void SceneCache::startPrefetch(const std::string& key, std::shared_ptr<const Sce
     if (parsers_) turn.emplace(parsers_->reserveTurn());
     // On the GL worker (which is when this is used): no recycled textures.
     const GpuSceneOptions uploadOptions{maxAnisotropy_, options.textureCompression,
-                                        textureCapabilities_, nullptr};
+                                        textureCapabilities_, nullptr, nullptr};
     auto parsing = std::make_shared<std::packaged_task<Parsed()>>(
         [rendererOptions = options_, parsers = parsers_.get(), source, options, buildTrace,
          turn = std::move(turn), glWorker = glWorker_.get(), uploadOptions,
@@ -453,13 +457,13 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
   } else {
     const StagedScene* staged = parsed.staged ? &*parsed.staged : nullptr;
     try {
-      entry->gpu =
-          GpuSceneOwner(new GpuScene(  // NOLINT(cppcoreguidelines-owning-memory): owned at once
-                            entry->scene,
-                            GpuSceneOptions{maxAnisotropy_, options.textureCompression,
-                                            textureCapabilities_, recycledTextures_},
-                            staged),
-                        GpuSceneDeleter(glWorker_.get()));
+      entry->gpu = GpuSceneOwner(
+          new GpuScene(  // NOLINT(cppcoreguidelines-owning-memory): owned at once
+              entry->scene,
+              GpuSceneOptions{maxAnisotropy_, options.textureCompression, textureCapabilities_,
+                              recycledTextures_, recycledBuffers_},
+              staged),
+          GpuSceneDeleter(glWorker_.get()));
     } catch (...) {
       // Copies from the region may have been issued before the failure.
       if (staged != nullptr) staging_->retire(std::move(parsed.staged->region));

@@ -213,9 +213,10 @@ class SceneCache {
   RendererOptions options_;
   // Declared first: freed last, after every scene that may hand it work.
   std::unique_ptr<gl::Worker> glWorker_;
-  // The RGBA8 texture storage of scenes freed on the render thread, for later scenes (none with a
-  // GL worker, which frees scenes on its own thread).
+  // The RGBA8 textures' and geometry buffers' storage of scenes freed on the render thread, for
+  // later scenes (none with a GL worker, which frees scenes on its own thread).
   std::shared_ptr<gl::RecycledTextures> recycledTextures_;
+  std::shared_ptr<gl::RecycledBuffers> recycledBuffers_;
   std::atomic<std::size_t> uploadedAheadBytes_{0};
   // Where prefetch threads copy the scenes they parsed (RendererOptions::uploadStagingBytes).
   // Declared before the prefetches, whose regions go back to it when they are dropped.

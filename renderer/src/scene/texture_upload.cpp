@@ -102,8 +102,7 @@ UploadedTexture uploadPlain(const Image8& image, bool srgb, const StagedPixels* 
   if (recycled != nullptr) {
     result.texture = recycled->take(shape, result.bytes);
   } else {
-    result.texture = gl::RecycledTexture(gl::Texture(GL_TEXTURE_2D));
-    glTextureStorage2D(result.texture.id(), shape.levels, shape.format, shape.width, shape.height);
+    result.texture = gl::RecycledTexture(gl::makeStorage(shape));
   }
   const GLuint id = result.texture.id();
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "gl/gl_objects.hpp"
-#include "gl/recycled_textures.hpp"
+#include "gl/recycled_objects.hpp"
 #include "lgh/request.hpp"
 #include "scene/block_compression.hpp"
 #include "scene/scene.hpp"
