@@ -15,6 +15,11 @@ struct SceneCacheStats {
   // scenes parsed and not uploaded yet, or uploaded and not yet copied by the GPU.
   std::size_t stagingBytes = 0;
   std::size_t stagingBytesInUse = 0;
+  // GL storage of freed scenes kept for later ones (RGBA8 textures, geometry buffers; none with
+  // the GL worker): new objects that took kept storage, and the bytes kept now (outside `bytes`).
+  std::uint64_t recycledTextures = 0;
+  std::uint64_t recycledBuffers = 0;
+  std::size_t keptStorageBytes = 0;
 };
 
 }  // namespace lgh

@@ -559,6 +559,16 @@ SceneCacheStats SceneCache::stats() const {
   for (const Slot& slot : slots_) stats.bytes += slot.entry->gpuBytes();
   stats.stagingBytes = stagingBytes();
   stats.stagingBytesInUse = stagingBytesInUse();
+  if (recycledTextures_) {
+    const auto textures = recycledTextures_->stats();
+    stats.recycledTextures = textures.recycled;
+    stats.keptStorageBytes += textures.keptBytes;
+  }
+  if (recycledBuffers_) {
+    const auto buffers = recycledBuffers_->stats();
+    stats.recycledBuffers = buffers.recycled;
+    stats.keptStorageBytes += buffers.keptBytes;
+  }
   return stats;
 }
 
