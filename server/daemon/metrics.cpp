@@ -202,6 +202,10 @@ std::string Metrics::exposition(const RuntimeGauges& gauges) const {
         static_cast<double>(gauges.sceneCacheBytes));
   gauge(out, "lghd_scene_cache_budget_bytes", "GPU memory budget of the scene cache.",
         static_cast<double>(gauges.sceneCacheBudgetBytes));
+  gauge(out, "lghd_scene_storage_kept_bytes",
+        "GPU memory of freed scenes' textures and buffers kept for later scenes (outside the "
+        "scene cache's budget).",
+        static_cast<double>(gauges.sceneStorageKeptBytes));
   gauge(out, "lghd_shadow_tracer_ready",
         "1 when the Vulkan shadow tracer is up, 0 when this machine cannot trace shadows (see "
         "/v1/info), -1 until a frame has asked for shadows.",

@@ -53,6 +53,8 @@ struct RuntimeGauges {
   std::size_t sceneCacheEntries = 0;
   std::size_t sceneCacheBytes = 0;
   std::size_t sceneCacheBudgetBytes = 0;
+  // GL storage of freed scenes kept for later ones, outside the cache's budget.
+  std::size_t sceneStorageKeptBytes = 0;
   // The shadow side: 1 ready, 0 unavailable, -1 no frame has asked for shadows yet.
   int shadowTracer = -1;
   lgh::ResourceStats resources;  // live GL objects and GPU memory, as of the last render

@@ -282,6 +282,7 @@ RuntimeGauges RenderQueue::gauges() const {
     gauges.sceneCacheEntries += worker.cache.entries;
     gauges.sceneCacheBytes += worker.cache.bytes;
     gauges.sceneCacheBudgetBytes += options_.renderer.sceneCacheBytes;
+    gauges.sceneStorageKeptBytes += worker.cache.keptStorageBytes;
     gauges.framesInFlight += worker.framesInFlight;
     gauges.readbackBytes += worker.readbackBytes;
     GpuGauges gpu;

@@ -131,6 +131,7 @@ TEST(RecycledStorage, FramesOnStorageOfEarlierScenesHaveTheirOwnPixels) {
       "BoxTextured-glTF-Embedded/BoxTextured.gltf", "BoxBadNormals-glTF-Binary/BoxBadNormals.glb",
       "BoxTextured-glTF-Binary/BoxTextured.glb",    "ClearCoat-glTF/ClearCoatTest.gltf"};
   std::vector<nlohmann::json> frames;
+  frames.reserve(assets.size());
   for (const std::string& asset : assets) frames.push_back(thumbnailRequest(asset, false));
   lgh::Renderer shared(cacheOff());
   const auto recycled = renderHintedFirst(shared, frames);
