@@ -38,6 +38,10 @@ for i, e in enumerate(events):
     own = [name(*fr) for fr in user if fr[2].endswith("/lghd")][:3]
     key = f"{prim} < " + " < ".join(own)
     blocked[key] += ms; count[key] += 1; total += ms
+outs = sum(1 for e in events if e[1] == tid)
+ins = sum(1 for e in events if e[2] == tid)
+print(f"{outs} switches off the CPU, {ins} back on: the times below hold only when they match")
 print(f"blocked {total / thumbnails:.3f} ms per thumbnail, preempted {runnable / thumbnails:.3f} ms")
+print("   ms   sleeps per thumbnail, where (leaf < lghd callers)")
 for k, v in blocked.most_common(15):
     print(f"  {v / thumbnails:7.3f} ms  {count[k] / thumbnails:6.2f}x  {k}")
