@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Device call G of 2026-12-03 (eleventh session): how long Z's render thread (535680c, the
 # bundle's binary with its symbols) sleeps during two cold batches, and where
-# (offcpu_sched.py as it was at 32e7c34..this call: perf sched record, every switch paired with the
-# one that gives the CPU back; changed for call H).
+# (the first version of offcpu_sched.py, not kept: perf sched record of every scheduler event, each
+# switch off paired with the next one back on; call H has the kept version).
 set -u
 mkdir -p /tmp/p && tar -C /tmp/p -xJf .devbundle-p/perf.tar.xz
 export LD_LIBRARY_PATH=$PWD/.devbundle/lib
