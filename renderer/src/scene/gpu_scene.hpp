@@ -18,6 +18,7 @@
 #include <glm/glm.hpp>
 
 #include "gl/gl_objects.hpp"
+#include "gl/recycled_objects.hpp"
 #include "gl/readback_buffers.hpp"
 #include "scene/geometry_layout.hpp"
 #include "scene/scene.hpp"
