@@ -9,6 +9,7 @@
 #include <deque>
 #include <functional>
 #include <mutex>
+#include <semaphore>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -45,7 +46,11 @@ class TaskPool {
   void stop();  // runs what is queued, joins the workers
 
   mutable std::mutex mutex_;
-  std::condition_variable workAvailable_;
+  // One count per queued task and, at stop, one per worker. Workers sleep on this instead of a
+  // condition variable: glibc 2.36's pthread_cond_signal can wait for threads it woke before to
+  // run, and the render thread, which hands every frame to the encoders, slept there about every
+  // other thumbnail (docs/BENCHMARKS.md, "GPU targets, eleventh round").
+  std::counting_semaphore<> pending_{0};
   std::condition_variable idle_;
   std::deque<std::function<void()>> tasks_;
   int running_ = 0;

@@ -35,7 +35,7 @@ void TaskPool::stop() {
     std::lock_guard lock(mutex_);
     stopping_ = true;
   }
-  workAvailable_.notify_all();
+  pending_.release(static_cast<std::ptrdiff_t>(workers_.size()));
   for (std::thread& worker : workers_) worker.join();
 }
 
@@ -44,7 +44,7 @@ void TaskPool::submit(std::function<void()> task) {
     std::lock_guard lock(mutex_);
     tasks_.push_back(std::move(task));
   }
-  workAvailable_.notify_one();
+  pending_.release();
 }
 
 int TaskPool::idleWorkers() const {
@@ -60,9 +60,10 @@ void TaskPool::waitIdle() {
 
 void TaskPool::work(int index) {
   nameThisThread(name_ + "-" + std::to_string(index));
-  std::unique_lock lock(mutex_);
   for (;;) {
-    workAvailable_.wait(lock, [this] { return stopping_ || !tasks_.empty(); });
+    pending_.acquire();  // a queued task's count, or a stop's
+    std::unique_lock lock(mutex_);
+    // Each count was given with a task: the queue holds one unless this count is a stop's.
     if (tasks_.empty()) return;  // stopping, and nothing left to run
     std::function<void()> task = std::move(tasks_.front());
     tasks_.pop_front();
@@ -119,7 +120,7 @@ void TaskPool::parallelFor(std::size_t count, const std::function<void(std::size
         tasks_.emplace_front([range] { range->runClaimed(); });
       }
     }
-    workAvailable_.notify_all();
+    pending_.release(static_cast<std::ptrdiff_t>(helpers));
   }
   range->runClaimed();
   std::unique_lock lock(range->mutex);
