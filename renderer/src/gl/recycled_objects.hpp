@@ -50,9 +50,6 @@ struct BufferShape {
 
 Texture makeStorage(const TextureShape& shape);
 Buffer makeStorage(const BufferShape& shape);
-inline std::size_t storageBytes(const BufferShape& shape) {
-  return static_cast<std::size_t>(shape.bytes);
-}
 
 template <typename Object, typename Shape>
 class Recycler;
@@ -170,6 +167,14 @@ class Recycler : public std::enable_shared_from_this<Recycler<Object, Shape>> {
   std::size_t taken_ = 0;
   std::size_t recycled_ = 0;
 };
+
+// Storage of `shape` from `from` (`bytes`: what it takes), or of its own when there is no
+// recycler.
+template <typename Object, typename Shape>
+Recycled<Object, Shape> takeStorage(Recycler<Object, Shape>* from, const Shape& shape,
+                                    std::size_t bytes) {
+  return from != nullptr ? from->take(shape, bytes) : Recycled<Object, Shape>(makeStorage(shape));
+}
 
 using RecycledTexture = Recycled<Texture, TextureShape>;
 using RecycledTextures = Recycler<Texture, TextureShape>;

@@ -182,11 +182,12 @@ void GpuScene::uploadDrawTransforms() {
 
 gl::RecycledBuffer GpuScene::takeBuffer(GLsizeiptr bytes) {
   bytes = std::max<GLsizeiptr>(bytes, 1);
-  if (options_.recycledBuffers == nullptr || bytes > kMaxRecycledBufferBytes) {
-    return gl::RecycledBuffer(gl::makeStorage(gl::BufferShape{bytes}));
-  }
-  const gl::BufferShape shape = gl::BufferShape::holding(bytes);
-  return options_.recycledBuffers->take(shape, gl::storageBytes(shape));
+  // Without a recycler, and above the largest class kept, a buffer of the exact size.
+  gl::RecycledBuffers* from =
+      bytes <= kMaxRecycledBufferBytes ? options_.recycledBuffers.get() : nullptr;
+  const gl::BufferShape shape =
+      from != nullptr ? gl::BufferShape::holding(bytes) : gl::BufferShape{bytes};
+  return gl::takeStorage(from, shape, static_cast<std::size_t>(shape.bytes));
 }
 
 const GpuScene::UploadedImage* GpuScene::imageTexture(int image, TextureUsage usage,

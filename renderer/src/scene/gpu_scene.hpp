@@ -18,8 +18,8 @@
 #include <glm/glm.hpp>
 
 #include "gl/gl_objects.hpp"
-#include "gl/recycled_objects.hpp"
 #include "gl/readback_buffers.hpp"
+#include "gl/recycled_objects.hpp"
 #include "scene/geometry_layout.hpp"
 #include "scene/scene.hpp"
 #include "scene/staged_scene.hpp"
@@ -130,15 +130,14 @@ class GpuScene {
   // a many-part asset's upload.
   void uploadGeometry(const Scene& scene, const GeometryLayout& layout, const StagedScene* staged);
   void uploadDrawTransforms();
+  // A buffer with at least `bytes` usable bytes (recycled up to kMaxRecycledBufferBytes).
+  gl::RecycledBuffer takeBuffer(GLsizeiptr bytes);
+  static constexpr GLsizeiptr kMaxRecycledBufferBytes = GLsizeiptr{16} << 20;
 
   const Scene& scene_;
   GpuSceneOptions options_;
   TextureCapabilities capabilities_;
   std::vector<DrawItem> drawItems_;
-  // A buffer with at least `bytes` usable bytes (recycled up to kMaxRecycledBufferBytes).
-  gl::RecycledBuffer takeBuffer(GLsizeiptr bytes);
-  static constexpr GLsizeiptr kMaxRecycledBufferBytes = GLsizeiptr{16} << 20;
-
   gl::RecycledBuffer vertices_;
   gl::RecycledBuffer indices_;
   gl::RecycledBuffer drawTransforms_;  // per draw item (kDrawTransformLocation)

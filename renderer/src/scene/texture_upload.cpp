@@ -99,11 +99,7 @@ UploadedTexture uploadPlain(const Image8& image, bool srgb, const StagedPixels* 
   result.bytes = rgba8Bytes(image.width, image.height, levels);
   const gl::TextureShape shape{srgb ? GLenum{GL_SRGB8_ALPHA8} : GLenum{GL_RGBA8}, image.width,
                                image.height, levels};
-  if (recycled != nullptr) {
-    result.texture = recycled->take(shape, result.bytes);
-  } else {
-    result.texture = gl::RecycledTexture(gl::makeStorage(shape));
-  }
+  result.texture = gl::takeStorage(recycled, shape, result.bytes);
   const GLuint id = result.texture.id();
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   if (staged != nullptr) {
