@@ -1,7 +1,8 @@
 // The scene parser processes (scene/worker/scene_worker_pool.hpp) serve loads in the order of
 // their turns, taken when the scenes are hinted, whatever order the prefetch threads reach the pool
-// in; a turn dropped unused lets the next one go. The worker process is lgh-bench, which answers
-// --scene-parser-worker as lghd does, parsing a real assimp test model.
+// in; a turn dropped unused lets the next one go. A worker's answers come the same whether they
+// travel in its answer arena or in memory of their own. The worker process is lgh-bench, which
+// answers --scene-parser-worker as lghd does, parsing real assimp test models.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -9,9 +10,13 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "lgh/request.hpp"
+#include "scene/gltf/gltf_loader.hpp"
+#include "scene/worker/scene_worker.hpp"
 #include "scene/worker/scene_worker_pool.hpp"
+#include "scene_compare.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -26,12 +31,14 @@ lgh::SceneWorkerOptions workerOptions() {
   return options;
 }
 
-lgh::worker::LoadJob boxJob() {
+lgh::worker::LoadJob assetJob(const std::string& path) {
   lgh::SceneSource source;
   source.kind = lgh::SceneSource::Kind::AssetPath;
-  source.assetPath = "BoxTextured-glTF/BoxTextured.gltf";
+  source.assetPath = path;
   return {source, lgh::test::assimpGltfDir(), {}, {}};
 }
+
+lgh::worker::LoadJob boxJob() { return assetJob("BoxTextured-glTF/BoxTextured.gltf"); }
 
 TEST(SceneWorkerPool, ALaterTurnWaitsForTheEarlierOnesEvenWithAnIdleWorker) {
   SceneWorkerPool pool(workerOptions());
@@ -71,6 +78,31 @@ TEST(SceneWorkerPool, ALoadWithoutATurnQueuesBehindTheTurnsTakenBeforeIt) {
   hinted.reset();
   drawn.join();
   EXPECT_TRUE(done);
+}
+
+// Large and small answers in turn, through one worker each: with the default arena (every answer
+// fits), with one that only the small ones fit (the large ones in a sealed memfd each), and with
+// none. Each load gives the scene this process loads itself, so neither the arena's reuse nor the
+// switch between the two ways mixes up answers.
+TEST(SceneWorker, AnswersInTheArenaAndInMemoryOfTheirOwnAreTheSameScenes) {
+  const std::vector<std::string> assets = {
+      "ClearCoat-glTF/ClearCoatTest.gltf", "BoxTextured-glTF/BoxTextured.gltf",
+      "draco/2CylinderEngine.gltf", "BoxTextured-glTF/BoxTextured.gltf",
+      "2CylinderEngine-glTF-Binary/2CylinderEngine.glb"};
+  for (const std::size_t arenaBytes :
+       {lgh::SceneWorkerOptions{}.answerArenaBytes, std::size_t{1} << 20, std::size_t{0}}) {
+    SCOPED_TRACE("answer arena of " + std::to_string(arenaBytes) + " bytes");
+    lgh::SceneWorkerOptions options = workerOptions();
+    options.answerArenaBytes = arenaBytes;
+    lgh::worker::SceneWorker worker(options);
+    for (const std::string& asset : assets) {
+      SCOPED_TRACE(asset);
+      const lgh::worker::LoadJob job = assetJob(asset);
+      const lgh::Scene here =
+          lgh::loadSceneSource(job.source, job.assetRoot, job.limits, job.options);
+      lgh::test::expectSameScene(here, worker.load(job));
+    }
+  }
 }
 
 }  // namespace

@@ -25,6 +25,10 @@ struct SceneWorkerOptions {
   // Parser processes at most (each with the memory limit above): the scenes a render thread
   // draws next parse side by side. More start only while every running one is busy.
   std::size_t processes = 1;
+  // Each worker's answers are written into this much shared memory, kept for the worker's life
+  // (its pages stay resident once an answer used them); a larger answer, or every answer with 0,
+  // comes in memory of its own, made and unmapped per answer.
+  std::size_t answerArenaBytes = std::size_t{16} << 20;
 };
 
 template <>

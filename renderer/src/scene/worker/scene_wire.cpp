@@ -87,11 +87,15 @@ class Reader {
  public:
   explicit Reader(std::span<const std::uint8_t> bytes) : bytes_(bytes) {}
 
+  // The bytes may be shared with the worker while they are read (its answer arena): each value
+  // is copied out once, and the empty asm keeps the compiler from reading it from there again
+  // after it was checked.
   template <typename T>
   T pod() {
     static_assert(std::is_trivially_copyable_v<T>);
     T value;
     std::memcpy(&value, take(sizeof(T)), sizeof(T));
+    asm volatile("" : "+m"(value));
     return value;
   }
   std::size_t size() {

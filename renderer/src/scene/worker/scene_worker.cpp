@@ -22,10 +22,13 @@
 #include <functional>
 #include <future>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <new>
+#include <optional>
 #include <span>
 #include <thread>
+#include <utility>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -55,17 +58,48 @@ constexpr bool kAddressSanitizer = false;
 constexpr bool kAddressSanitizer = false;
 #endif
 
-// A message is a sealed memfd holding its bytes, passed over the socket (SCM_RIGHTS) with its
-// size: the bytes are written once and read once, where a socket would copy them twice more. The
-// seals (no writes, no shrinking) keep a worker gone bad from changing or truncating the bytes
-// while the renderer reads them, which would otherwise fault the renderer's process.
+// A message is a header on the socket, and its bytes in shared memory: written once and read
+// once, where a socket would copy them twice more. Jobs, and answers too large for the arena,
+// travel in a sealed memfd passed with the header (SCM_RIGHTS): the seals (no writes, no
+// shrinking) keep a worker gone bad from changing or truncating the bytes while the renderer
+// reads them, which would otherwise fault the renderer's process.
+//
+// Answers travel in the worker's answer arena instead when they fit: a memfd the renderer makes
+// when the worker starts (sealed against shrinking and growing, so that a reader within its size
+// cannot fault) and offers it once, which both map for the worker's life. A new memfd per answer
+// cost each large scene its pages twice over: made and zeroed by the worker's kernel calls, then
+// mapped into the renderer and torn down again (about 11 ms of the 31 ms of an 8.6 MB scene on the
+// development VM). The arena's pages stay. The worker could still write to it while the renderer
+// reads; the renderer reads every byte once, into memory of its own, and checks what it read
+// there (scene_wire.hpp), so a worker gone bad can garble its own answer and nothing else.
 constexpr unsigned kSeals = F_SEAL_SEAL | F_SEAL_SHRINK | F_SEAL_GROW | F_SEAL_WRITE;
+constexpr unsigned kArenaSeals = F_SEAL_SEAL | F_SEAL_SHRINK | F_SEAL_GROW;
+
+enum class MessageKind : std::uint32_t {
+  Sealed = 1,   // the bytes in the memfd that comes with the header
+  InArena = 2,  // the bytes at the start of the answer arena; no memfd
+  Arena = 3,    // the renderer's offer of the answer arena (the memfd), `length` bytes
+};
+
+struct MessageHeader {
+  std::uint64_t length = 0;
+  MessageKind kind = MessageKind::Sealed;
+  std::uint32_t reserved = 0;
+};
 
 class UniqueFd {
  public:
   explicit UniqueFd(int fd = -1) : fd_(fd) {}
   ~UniqueFd() {
     if (fd_ >= 0) ::close(fd_);
+  }
+  UniqueFd(UniqueFd&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
+  UniqueFd& operator=(UniqueFd&& other) noexcept {
+    if (this != &other) {
+      if (fd_ >= 0) ::close(fd_);
+      fd_ = std::exchange(other.fd_, -1);
+    }
+    return *this;
   }
   UniqueFd(const UniqueFd&) = delete;
   UniqueFd& operator=(const UniqueFd&) = delete;
@@ -75,7 +109,31 @@ class UniqueFd {
   int fd_;
 };
 
-bool sendMessage(int socket, const Encoded& message) {
+// The header, and the memfd when there is one (`fd` >= 0).
+bool sendHeader(int socket, const MessageHeader& message, int fd) {
+  MessageHeader header = message;
+  iovec part{&header, sizeof(header)};
+  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))] = {};
+  msghdr envelope{};
+  envelope.msg_iov = &part;
+  envelope.msg_iovlen = 1;
+  if (fd >= 0) {
+    envelope.msg_control = control;
+    envelope.msg_controllen = sizeof(control);
+    cmsghdr* rights = CMSG_FIRSTHDR(&envelope);
+    rights->cmsg_level = SOL_SOCKET;
+    rights->cmsg_type = SCM_RIGHTS;
+    rights->cmsg_len = CMSG_LEN(sizeof(int));
+    std::memcpy(CMSG_DATA(rights), &fd, sizeof(fd));
+  }
+  ssize_t sent = -1;
+  do {
+    sent = ::sendmsg(socket, &envelope, MSG_NOSIGNAL);
+  } while (sent < 0 && errno == EINTR);
+  return sent == static_cast<ssize_t>(sizeof(header));
+}
+
+bool sendSealed(int socket, const Encoded& message) {
   const UniqueFd memory(::memfd_create("lgh-scene-message", MFD_CLOEXEC | MFD_ALLOW_SEALING));
   const std::size_t size = std::max<std::size_t>(message.size, 1);
   if (memory.get() < 0 || ::ftruncate(memory.get(), static_cast<off_t>(size)) != 0) return false;
@@ -86,59 +144,71 @@ bool sendMessage(int socket, const Encoded& message) {
   message.write(static_cast<std::uint8_t*>(mapped));
   ::munmap(mapped, size);
   if (::fcntl(memory.get(), F_ADD_SEALS, kSeals) != 0) return false;
-  std::uint64_t length = message.size;
-  iovec part{&length, sizeof(length)};
-  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))] = {};
-  msghdr header{};
-  header.msg_iov = &part;
-  header.msg_iovlen = 1;
-  header.msg_control = control;
-  header.msg_controllen = sizeof(control);
-  cmsghdr* rights = CMSG_FIRSTHDR(&header);
-  rights->cmsg_level = SOL_SOCKET;
-  rights->cmsg_type = SCM_RIGHTS;
-  rights->cmsg_len = CMSG_LEN(sizeof(int));
-  const int fd = memory.get();
-  std::memcpy(CMSG_DATA(rights), &fd, sizeof(fd));
-  ssize_t sent = -1;
-  do {
-    sent = ::sendmsg(socket, &header, MSG_NOSIGNAL);
-  } while (sent < 0 && errno == EINTR);
-  return sent == static_cast<ssize_t>(sizeof(length));
+  return sendHeader(socket, {message.size, MessageKind::Sealed}, memory.get());
 }
 
-// A received message, mapped read-only for as long as it lives.
-class Message {
+}  // namespace
+
+// A shared mapping of a memfd, unmapped on destruction.
+class SharedMapping {
  public:
-  Message() = default;
-  ~Message() {
+  SharedMapping(int fd, std::size_t size, int protection) {
+    void* data = ::mmap(nullptr, std::max<std::size_t>(size, 1), protection, MAP_SHARED, fd, 0);
+    if (data != MAP_FAILED) {
+      data_ = static_cast<std::uint8_t*>(data);
+      size_ = size;
+    }
+  }
+  ~SharedMapping() {
     if (data_ != nullptr) ::munmap(data_, std::max<std::size_t>(size_, 1));
   }
-  Message(const Message&) = delete;
-  Message& operator=(const Message&) = delete;
+  SharedMapping(const SharedMapping&) = delete;
+  SharedMapping& operator=(const SharedMapping&) = delete;
 
-  std::span<const std::uint8_t> bytes() const {
-    return {static_cast<const std::uint8_t*>(data_), size_};
-  }
-  void map(int fd, std::size_t size) {
-    data_ = ::mmap(nullptr, std::max<std::size_t>(size, 1), PROT_READ, MAP_SHARED | MAP_POPULATE,
-                   fd, 0);
-    if (data_ == MAP_FAILED) data_ = nullptr;
-    size_ = data_ != nullptr ? size : 0;
-  }
   bool mapped() const { return data_ != nullptr; }
+  std::uint8_t* data() const { return data_; }
+  std::size_t size() const { return size_; }
 
  private:
-  void* data_ = nullptr;
+  std::uint8_t* data_ = nullptr;
   std::size_t size_ = 0;
 };
 
-enum class ReadResult { Done, Closed, TimedOut, Malformed };
+namespace {
 
-// Waits for the next message until `deadline` (none: as long as it takes) and maps it, when it is
-// sealed and at most `maxBytes` long.
-ReadResult receiveMessage(int socket, const Clock::time_point* deadline, std::uint64_t maxBytes,
-                          Message& message) {
+// An answer in the arena when it fits there, else in a sealed memfd of its own.
+bool sendAnswer(int socket, const Encoded& message, const SharedMapping* arena) {
+  if (arena == nullptr || message.size > arena->size()) return sendSealed(socket, message);
+  message.write(arena->data());
+  return sendHeader(socket, {message.size, MessageKind::InArena}, -1);
+}
+
+// A received message: a sealed memfd mapped read-only for as long as it lives, or a span of the
+// answer arena.
+class Message {
+ public:
+  std::span<const std::uint8_t> bytes() const { return bytes_; }
+  void map(int fd, std::size_t size) {
+    owned_.emplace(fd, size, PROT_READ);
+    if (owned_->mapped()) bytes_ = {owned_->data(), size};
+  }
+  void borrow(std::span<const std::uint8_t> bytes) { bytes_ = bytes; }
+  bool mapped() const { return bytes_.data() != nullptr; }
+
+ private:
+  std::optional<SharedMapping> owned_;
+  std::span<const std::uint8_t> bytes_;
+};
+
+enum class ReadResult { Done, Closed, TimedOut, Malformed, ArenaOffered };
+
+struct Received {
+  MessageHeader header;
+  UniqueFd memory;  // the memfd that came with it, if one did
+};
+
+// Waits for the next header until `deadline` (none: as long as it takes).
+ReadResult receiveHeader(int socket, const Clock::time_point* deadline, Received& received) {
   while (deadline != nullptr) {
     const auto left =
         std::chrono::duration_cast<std::chrono::milliseconds>(*deadline - Clock::now());
@@ -148,36 +218,67 @@ ReadResult receiveMessage(int socket, const Clock::time_point* deadline, std::ui
     if (ready > 0) break;
     if (ready < 0 && errno != EINTR) return ReadResult::Closed;
   }
-  std::uint64_t length = 0;
-  iovec part{&length, sizeof(length)};
+  iovec part{&received.header, sizeof(received.header)};
   alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))] = {};
-  msghdr header{};
-  header.msg_iov = &part;
-  header.msg_iovlen = 1;
-  header.msg_control = control;
-  header.msg_controllen = sizeof(control);
-  ssize_t received = -1;
+  msghdr envelope{};
+  envelope.msg_iov = &part;
+  envelope.msg_iovlen = 1;
+  envelope.msg_control = control;
+  envelope.msg_controllen = sizeof(control);
+  ssize_t length = -1;
   do {
-    received = ::recvmsg(socket, &header, MSG_CMSG_CLOEXEC);
-  } while (received < 0 && errno == EINTR);
-  if (received <= 0) return ReadResult::Closed;
-  const cmsghdr* rights = CMSG_FIRSTHDR(&header);
-  if (rights == nullptr || rights->cmsg_type != SCM_RIGHTS ||
-      rights->cmsg_len != CMSG_LEN(sizeof(int))) {
+    length = ::recvmsg(socket, &envelope, MSG_CMSG_CLOEXEC);
+  } while (length < 0 && errno == EINTR);
+  if (length <= 0) return ReadResult::Closed;
+  if (const cmsghdr* rights = CMSG_FIRSTHDR(&envelope); rights != nullptr) {
+    if (rights->cmsg_type != SCM_RIGHTS || rights->cmsg_len != CMSG_LEN(sizeof(int))) {
+      return ReadResult::Malformed;
+    }
+    int fd = -1;
+    std::memcpy(&fd, CMSG_DATA(rights), sizeof(fd));
+    received.memory = UniqueFd(fd);
+  }
+  if (length != static_cast<ssize_t>(sizeof(received.header)) ||
+      (envelope.msg_flags & (MSG_TRUNC | MSG_CTRUNC)) != 0) {
     return ReadResult::Malformed;
   }
-  int fd = -1;
-  std::memcpy(&fd, CMSG_DATA(rights), sizeof(fd));
-  const UniqueFd memory(fd);
+  return ReadResult::Done;
+}
+
+bool sealedWith(int fd, unsigned seals, std::uint64_t length) {
   struct stat status {};
-  const bool whole =
-      received == static_cast<ssize_t>(sizeof(length)) && length <= maxBytes &&
-      ::fstat(fd, &status) == 0 &&
-      static_cast<std::uint64_t>(status.st_size) >= std::max<std::uint64_t>(length, 1) &&
-      (static_cast<unsigned>(::fcntl(fd, F_GET_SEALS)) & kSeals) == kSeals;
-  if (!whole) return ReadResult::Malformed;
-  message.map(fd, static_cast<std::size_t>(length));
-  return message.mapped() ? ReadResult::Done : ReadResult::Malformed;
+  return ::fstat(fd, &status) == 0 &&
+         static_cast<std::uint64_t>(status.st_size) >= std::max<std::uint64_t>(length, 1) &&
+         (static_cast<unsigned>(::fcntl(fd, F_GET_SEALS)) & seals) == seals;
+}
+
+// Waits for the next message until `deadline` (none: as long as it takes) and maps it, when it is
+// sealed and at most `maxBytes` long, or finds it in `arena`. An offer of an arena (the worker's
+// side: `offer` not null) is handed over in `offer` instead.
+ReadResult receiveMessage(int socket, const Clock::time_point* deadline, std::uint64_t maxBytes,
+                          const SharedMapping* arena, Message& message, Received* offer = nullptr) {
+  Received received;
+  if (const ReadResult result = receiveHeader(socket, deadline, received);
+      result != ReadResult::Done) {
+    return result;
+  }
+  const MessageHeader& header = received.header;
+  const int fd = received.memory.get();
+  switch (header.kind) {
+    case MessageKind::Sealed:
+      if (fd < 0 || header.length > maxBytes || !sealedWith(fd, kSeals, header.length)) break;
+      message.map(fd, static_cast<std::size_t>(header.length));
+      return message.mapped() ? ReadResult::Done : ReadResult::Malformed;
+    case MessageKind::InArena:
+      if (fd >= 0 || arena == nullptr || header.length > arena->size()) break;
+      message.borrow({arena->data(), static_cast<std::size_t>(header.length)});
+      return ReadResult::Done;
+    case MessageKind::Arena:
+      if (offer == nullptr || fd < 0 || !sealedWith(fd, kArenaSeals, header.length)) break;
+      *offer = std::move(received);
+      return ReadResult::ArenaOffered;
+  }
+  return ReadResult::Malformed;
 }
 
 // The worker asks for SIGKILL when its parent dies (PR_SET_PDEATHSIG), and Linux counts as its
@@ -332,11 +433,33 @@ void SceneWorker::start() {
   }
   spdlog::info("scene worker: pid {} ready in {:.0f} ms", pid_,
                std::chrono::duration<double, std::milli>(Clock::now() - started).count());
+  offerAnswerArena();
+}
+
+void SceneWorker::offerAnswerArena() {
+  const std::size_t bytes = options_.answerArenaBytes;
+  if (bytes == 0) return;
+  const UniqueFd memory(::memfd_create("lgh-scene-answers", MFD_CLOEXEC | MFD_ALLOW_SEALING));
+  const bool made = memory.get() >= 0 &&
+                    ::ftruncate(memory.get(), static_cast<off_t>(bytes)) == 0 &&
+                    ::fcntl(memory.get(), F_ADD_SEALS, kArenaSeals) == 0;
+  auto arena = made ? std::make_unique<SharedMapping>(memory.get(), bytes, PROT_READ) : nullptr;
+  if (!arena || !arena->mapped()) {
+    spdlog::warn("scene worker: no answer arena ({}); each answer comes in memory of its own",
+                 std::strerror(errno));
+    return;
+  }
+  if (!sendHeader(socket_, {bytes, MessageKind::Arena}, memory.get())) {
+    spdlog::warn("scene worker: pid {} did not take its answer arena", pid_);
+    return;  // the next load finds the worker gone, or answers in memory of its own
+  }
+  answers_ = std::move(arena);
 }
 
 std::string SceneWorker::stop(bool kill) {
   if (socket_ >= 0) ::close(socket_);
   socket_ = -1;
+  answers_.reset();
   if (pid_ < 0) return "not running";
   if (kill) ::kill(pid_, SIGKILL);
   int status = 0;
@@ -357,7 +480,7 @@ std::string SceneWorker::stop(bool kill) {
 
 LoadOutcome SceneWorker::exchange(const LoadJob& job, const std::string& displayName) {
   if (pid_ < 0) start();
-  if (!sendMessage(socket_, encodeJob(job))) {
+  if (!sendSealed(socket_, encodeJob(job))) {
     const std::string end = stop(true);
     throw Error(ErrorCode::Unavailable,
                 fmt::format("the scene parser worker stopped before taking the asset ({})", end));
@@ -366,8 +489,8 @@ LoadOutcome SceneWorker::exchange(const LoadJob& job, const std::string& display
                                            std::chrono::duration<double>(options_.timeoutSeconds));
   Message answer;
   // The answer cannot be larger than what the worker may hold in memory.
-  const ReadResult result =
-      receiveMessage(socket_, &deadline, options_.memoryBytes + (std::uint64_t{1} << 20), answer);
+  const ReadResult result = receiveMessage(
+      socket_, &deadline, options_.memoryBytes + (std::uint64_t{1} << 20), answers_.get(), answer);
   if (result == ReadResult::TimedOut) {
     stop(true);
     spdlog::error("scene worker: {} took longer than {} s to parse; the worker was killed",
@@ -424,13 +547,22 @@ int runSceneParserWorker(int fd, const std::string& testCrashMarker) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // never outlive the daemon (see SpawnThread)
   if (::getppid() == 1) return 1;      // it died before the request took effect
   if (!worker::sendReady(fd)) return 1;
+  std::unique_ptr<worker::SharedMapping> answers;  // the renderer's answer arena, once offered
   for (;;) {
     worker::LoadOutcome outcome = Error(ErrorCode::Internal, "no load happened");
     {
       worker::Message request;
-      const worker::ReadResult result =
-          worker::receiveMessage(fd, nullptr, std::numeric_limits<std::uint64_t>::max(), request);
+      worker::Received offer;
+      const worker::ReadResult result = worker::receiveMessage(
+          fd, nullptr, std::numeric_limits<std::uint64_t>::max(), nullptr, request, &offer);
       if (result == worker::ReadResult::Closed) return 0;  // the renderer is done with us
+      if (result == worker::ReadResult::ArenaOffered) {
+        answers = std::make_unique<worker::SharedMapping>(
+            offer.memory.get(), static_cast<std::size_t>(offer.header.length),
+            PROT_READ | PROT_WRITE);
+        if (!answers->mapped()) answers.reset();
+        continue;
+      }
       if (result != worker::ReadResult::Done) return 1;
       try {
         const worker::LoadJob job = worker::decodeJob(request.bytes());
@@ -449,7 +581,7 @@ int runSceneParserWorker(int fd, const std::string& testCrashMarker) {
             Error(ErrorCode::Internal, fmt::format("the scene parser failed: {}", error.what()));
       }
     }
-    if (!worker::sendMessage(fd, worker::encodeOutcome(outcome))) return 1;
+    if (!worker::sendAnswer(fd, worker::encodeOutcome(outcome), answers.get())) return 1;
   }
 }
 

@@ -7,6 +7,7 @@
 
 #include <sys/types.h>
 
+#include <memory>
 #include <mutex>
 #include <string>
 
@@ -14,6 +15,8 @@
 #include "scene/worker/scene_wire.hpp"
 
 namespace lgh::worker {
+
+class SharedMapping;
 
 class SceneWorker {
  public:
@@ -34,11 +37,14 @@ class SceneWorker {
   // Returns how it ended, for messages ("exit 0", "signal 11 (Segmentation fault)").
   std::string stop(bool kill);
   LoadOutcome exchange(const LoadJob& job, const std::string& displayName);
+  // Gives the new worker the memory its answers are written into when they fit (answers_).
+  void offerAnswerArena();
 
   SceneWorkerOptions options_;
   std::mutex mutex_;  // one load at a time
   pid_t pid_ = -1;
   int socket_ = -1;
+  std::unique_ptr<SharedMapping> answers_;  // the answer arena, mapped read-only
 };
 
 }  // namespace lgh::worker

@@ -22,46 +22,55 @@ void SceneWorkerPool::advance() {
   while (dropped_.erase(serving_) > 0) ++serving_;
 }
 
-void SceneWorkerPool::drop(std::uint64_t number) {
-  {
-    const std::lock_guard lock(mutex_);
-    if (number == serving_) {
-      advance();
-    } else {
-      dropped_.insert(number);
-    }
+bool SceneWorkerPool::servable(std::uint64_t number) const {
+  return number == serving_ && (!idle_.empty() || workers_.size() + starting_ < maxProcesses());
+}
+
+void SceneWorkerPool::wakeServing() {
+  if (const auto waiter = waiting_.find(serving_); waiter != waiting_.end()) {
+    waiter->second->notify_one();
   }
-  freed_.notify_all();
+}
+
+void SceneWorkerPool::drop(std::uint64_t number) {
+  const std::lock_guard lock(mutex_);
+  if (number == serving_) {
+    advance();
+  } else {
+    dropped_.insert(number);
+  }
+  wakeServing();
 }
 
 SceneWorker& SceneWorkerPool::acquire(Turn turn) {
   const std::uint64_t number = turn.number_;
   turn.pool_ = nullptr;  // used here, not dropped
   std::unique_lock lock(mutex_);
-  freed_.wait(lock, [&] {
-    return number == serving_ && (!idle_.empty() || workers_.size() + starting_ < maxProcesses());
-  });
+  if (!servable(number)) {
+    std::condition_variable mine;
+    waiting_.emplace(number, &mine);
+    mine.wait(lock, [&] { return servable(number); });
+    waiting_.erase(number);
+  }
   advance();
   if (!idle_.empty()) {
     SceneWorker* worker = idle_.back();
     idle_.pop_back();
-    lock.unlock();
-    freed_.notify_all();  // the next turn may find another idle worker
+    wakeServing();  // the next turn may find another idle worker
     return *worker;
   }
   // Every worker is busy and there is room for one more: its start-up (about 0.2 s) happens
   // outside the lock, so that the others stay usable and the next turns go on.
   ++starting_;
+  wakeServing();
   lock.unlock();
-  freed_.notify_all();
   std::unique_ptr<SceneWorker> started;
   try {
     started = std::make_unique<SceneWorker>(options_);
   } catch (...) {
     lock.lock();
     --starting_;
-    lock.unlock();
-    freed_.notify_all();
+    wakeServing();
     throw;
   }
   lock.lock();
@@ -71,11 +80,9 @@ SceneWorker& SceneWorkerPool::acquire(Turn turn) {
 }
 
 void SceneWorkerPool::release(SceneWorker& worker) {
-  {
-    const std::lock_guard lock(mutex_);
-    idle_.push_back(&worker);
-  }
-  freed_.notify_all();  // the waiter whose turn it is
+  const std::lock_guard lock(mutex_);
+  idle_.push_back(&worker);
+  wakeServing();
 }
 
 Scene SceneWorkerPool::load(const LoadJob& job) { return load(job, reserveTurn()); }

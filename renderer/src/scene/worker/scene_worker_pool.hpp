@@ -11,6 +11,7 @@
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -64,16 +65,23 @@ class SceneWorkerPool {
   void drop(std::uint64_t number);
   // Under mutex_: the next turn that was not dropped.
   void advance();
+  // Under mutex_: whether turn `number` may take a worker (or start one) now.
+  bool servable(std::uint64_t number) const;
+  // Under mutex_: wakes the load waiting with the turn being served, if one is. Only that one:
+  // waking every waiter (up to one per prefetch thread, 65) at each change cost as many context
+  // switches per load.
+  void wakeServing();
 
   SceneWorkerOptions options_;
   std::mutex mutex_;
-  std::condition_variable freed_;
   std::vector<std::unique_ptr<SceneWorker>> workers_;
   std::vector<SceneWorker*> idle_;
   std::size_t starting_ = 0;         // workers being started outside the lock
   std::uint64_t nextTicket_ = 0;     // the next turn's number
   std::uint64_t serving_ = 0;        // the turn that gets the next idle worker (or starts one)
   std::set<std::uint64_t> dropped_;  // turns after serving_ dropped unused
+  // The loads waiting for their turn, by turn: each on a condition of its own.
+  std::map<std::uint64_t, std::condition_variable*> waiting_;
 };
 
 }  // namespace lgh::worker
