@@ -342,8 +342,11 @@ RenderWorker::LookAhead RenderWorker::nextTickets(const JobPiece& piece,
 std::optional<std::size_t> RenderWorker::firstAtHand(const JobPiece& piece,
                                                      const std::vector<bool>& taken,
                                                      std::size_t head) const {
+  // The window is the look-ahead the scenes were hinted for: a ticket past it has no parse on
+  // its way and would be parsed when drawn.
+  const std::size_t window = renderer_->prefetchDepth();
   std::size_t looked = 0;
-  for (std::size_t i = head; i < piece.tickets.size() && looked < kDrawAheadWindow; ++i) {
+  for (std::size_t i = head; i < piece.tickets.size() && looked < window; ++i) {
     if (taken[i]) continue;
     ++looked;
     const RenderTicket& ticket = *piece.job->tickets[piece.tickets[i]];

@@ -119,13 +119,12 @@ class RenderWorker {
   LookAhead nextTickets(const JobPiece& piece, const std::vector<bool>& taken, std::size_t position,
                         std::size_t count);
   // The position to draw next: `head` (the first not taken) when its scene is at hand, else the
-  // first of the next kDrawAheadWindow not taken whose scene is (polling up to kDrawAheadWait,
-  // finishing frames meanwhile), else `head`.
+  // first of the next Renderer::prefetchDepth() not taken whose scene is (polling up to
+  // kDrawAheadWait, finishing frames meanwhile), else `head`.
   std::size_t choosePosition(const JobPiece& piece, const std::vector<bool>& taken,
                              std::size_t head);
   std::optional<std::size_t> firstAtHand(const JobPiece& piece, const std::vector<bool>& taken,
                                          std::size_t head) const;
-  static constexpr std::size_t kDrawAheadWindow = 16;
   static constexpr auto kDrawAheadWait = std::chrono::seconds(1);
   static constexpr auto kDrawAheadPoll = std::chrono::microseconds(200);
   void prefetch(const std::shared_ptr<const RenderTicket>& current, const LookAhead& next);
