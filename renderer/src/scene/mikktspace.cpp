@@ -2,12 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <map>
-#include <tuple>
-#include <unordered_map>
 #include <vector>
 
 #include "scene/tangents.hpp"
@@ -74,32 +72,47 @@ class MikkTSpace {
     return {value.x, 1.0F - value.y};
   }
 
+  // A corner's position, normal and texture coordinate, bit for bit: corners weld when equal.
   using Key = std::array<std::uint32_t, 8>;
-  struct KeyHash {
-    std::size_t operator()(const Key& key) const {
-      std::uint64_t hash = 1469598103934665603ULL;
-      for (std::uint32_t word : key) hash = (hash ^ word) * 1099511628211ULL;
-      return static_cast<std::size_t>(hash);
-    }
-  };
+  static std::uint64_t hashOf(const Key& key) {
+    std::uint64_t hash = 1469598103934665603ULL;
+    for (const std::uint32_t word : key) hash = (hash ^ word) * 1099511628211ULL;
+    return hash ^ (hash >> 32U);
+  }
 
+  Key keyOf(std::size_t triangle, int corner) const {
+    const Vertex& v = cornerVertex(triangle, corner);
+    const glm::vec2 texcoord = uv(v);
+    const std::array<float, 8> values{v.position.x, v.position.y, v.position.z, v.normal.x,
+                                      v.normal.y,   v.normal.z,   texcoord.x,   texcoord.y};
+    Key key{};
+    std::memcpy(key.data(), values.data(), sizeof(key));
+    return key;
+  }
+
+  // Welded vertices are numbered in the order their first corners come. An open-addressing table
+  // of welded vertices (linear probing, at most half full) rather than a node per corner.
   void weldVertices() {
-    std::unordered_map<Key, int, KeyHash> ids;
-    ids.reserve(primitive_.indices.size());
     const std::size_t triangles = primitive_.indices.size() / 3;
     infos_.resize(triangles);
     welded_.clear();
+    std::vector<Key> keys;
+    const std::size_t slotCount = std::bit_ceil(std::max<std::size_t>(16, triangles * 6));
+    const std::size_t mask = slotCount - 1;
+    std::vector<int> slots(slotCount, -1);
     for (std::size_t t = 0; t < triangles; ++t) {
       for (int i = 0; i < 3; ++i) {
-        const Vertex& v = cornerVertex(t, i);
-        const glm::vec2 texcoord = uv(v);
-        const std::array<float, 8> values{v.position.x, v.position.y, v.position.z, v.normal.x,
-                                          v.normal.y,   v.normal.z,   texcoord.x,   texcoord.y};
-        Key key{};
-        std::memcpy(key.data(), values.data(), sizeof(key));
-        const auto [it, inserted] = ids.emplace(key, static_cast<int>(welded_.size()));
-        if (inserted) welded_.push_back(primitive_.indices[t * 3 + static_cast<std::size_t>(i)]);
-        infos_[t].vertex[static_cast<std::size_t>(i)] = it->second;
+        const Key key = keyOf(t, i);
+        std::size_t slot = static_cast<std::size_t>(hashOf(key)) & mask;
+        while (slots[slot] >= 0 && keys[static_cast<std::size_t>(slots[slot])] != key) {
+          slot = (slot + 1) & mask;
+        }
+        if (slots[slot] < 0) {
+          slots[slot] = static_cast<int>(welded_.size());
+          keys.push_back(key);
+          welded_.push_back(primitive_.indices[t * 3 + static_cast<std::size_t>(i)]);
+        }
+        infos_[t].vertex[static_cast<std::size_t>(i)] = slots[slot];
       }
     }
   }
@@ -138,28 +151,41 @@ class MikkTSpace {
   }
 
   // Neighbours share an edge in opposite directions (consistent winding), as the reference's.
+  // Where several triangles share a directed edge (a non-manifold mesh), the first of them counts.
+  // The edges are listed by their first welded vertex (counting sort), so that finding (to, from)
+  // looks through the few edges leaving `to`.
   void buildNeighbours() {
-    std::unordered_map<std::uint64_t, std::pair<int, int>> edges;  // (from, to) -> (triangle, edge)
-    auto key = [](int from, int to) {
-      return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32U) |
-             static_cast<std::uint32_t>(to);
+    struct Edge {
+      int to;
+      int triangle;
     };
+    std::vector<int> start(welded_.size() + 1, 0);
+    for (const TriangleInfo& info : infos_) {
+      if (info.degenerate) continue;
+      for (const int from : info.vertex) ++start[static_cast<std::size_t>(from) + 1];
+    }
+    for (std::size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
+    std::vector<Edge> edges(static_cast<std::size_t>(start.back()));
+    std::vector<int> filled(start.begin(), start.end() - 1);
     for (std::size_t t = 0; t < infos_.size(); ++t) {
       if (infos_[t].degenerate) continue;
-      for (int e = 0; e < 3; ++e) {
-        const int from = infos_[t].vertex[static_cast<std::size_t>(e)];
-        const int to = infos_[t].vertex[static_cast<std::size_t>((e + 1) % 3)];
-        edges.emplace(key(from, to), std::make_pair(static_cast<int>(t), e));
+      for (std::size_t e = 0; e < 3; ++e) {
+        const auto from = static_cast<std::size_t>(infos_[t].vertex[e]);
+        edges[static_cast<std::size_t>(filled[from]++)] = {infos_[t].vertex[(e + 1) % 3],
+                                                           static_cast<int>(t)};
       }
     }
     for (std::size_t t = 0; t < infos_.size(); ++t) {
       if (infos_[t].degenerate) continue;
-      for (int e = 0; e < 3; ++e) {
-        const int from = infos_[t].vertex[static_cast<std::size_t>(e)];
-        const int to = infos_[t].vertex[static_cast<std::size_t>((e + 1) % 3)];
-        const auto it = edges.find(key(to, from));
-        if (it != edges.end() && it->second.first != static_cast<int>(t)) {
-          infos_[t].neighbour[static_cast<std::size_t>(e)] = it->second.first;
+      for (std::size_t e = 0; e < 3; ++e) {
+        const int from = infos_[t].vertex[e];
+        const auto to = static_cast<std::size_t>(infos_[t].vertex[(e + 1) % 3]);
+        const auto first = edges.begin() + start[to];
+        const auto last = edges.begin() + start[to + 1];
+        const auto back =
+            std::find_if(first, last, [&](const Edge& edge) { return edge.to == from; });
+        if (back != last && back->triangle != static_cast<int>(t)) {
+          infos_[t].neighbour[e] = back->triangle;
         }
       }
     }
@@ -247,21 +273,24 @@ class MikkTSpace {
 
   // A degenerate triangle's corner takes the frame of a non-degenerate corner of the same vertex.
   void copyToDegenerateTriangles(std::vector<CornerFrame>& corners) const {
-    std::unordered_map<int, std::size_t> firstCorner;
+    if (std::none_of(infos_.begin(), infos_.end(),
+                     [](const TriangleInfo& info) { return info.degenerate; })) {
+      return;
+    }
+    constexpr std::size_t kNone = ~std::size_t{0};
+    std::vector<std::size_t> firstCorner(welded_.size(), kNone);
     for (std::size_t t = 0; t < infos_.size(); ++t) {
       if (infos_[t].degenerate) continue;
-      for (int i = 0; i < 3; ++i) {
-        firstCorner.emplace(infos_[t].vertex[static_cast<std::size_t>(i)],
-                            t * 3 + static_cast<std::size_t>(i));
+      for (std::size_t i = 0; i < 3; ++i) {
+        std::size_t& first = firstCorner[static_cast<std::size_t>(infos_[t].vertex[i])];
+        if (first == kNone) first = t * 3 + i;
       }
     }
     for (std::size_t t = 0; t < infos_.size(); ++t) {
       if (!infos_[t].degenerate) continue;
-      for (int i = 0; i < 3; ++i) {
-        const auto it = firstCorner.find(infos_[t].vertex[static_cast<std::size_t>(i)]);
-        if (it != firstCorner.end()) {
-          corners[t * 3 + static_cast<std::size_t>(i)] = corners[it->second];
-        }
+      for (std::size_t i = 0; i < 3; ++i) {
+        const std::size_t first = firstCorner[static_cast<std::size_t>(infos_[t].vertex[i])];
+        if (first != kNone) corners[t * 3 + i] = corners[first];
       }
     }
   }
@@ -287,25 +316,30 @@ glm::vec4 finishFrame(const CornerFrame& frame, const glm::vec3& normal) {
 void generateMikkTSpaceTangents(Primitive& primitive, int uvSet) {
   primitive.indices.resize(primitive.indices.size() - primitive.indices.size() % 3);
   const std::vector<CornerFrame> corners = MikkTSpace(primitive, uvSet).run();
-  // Give each corner its frame; a vertex whose corners disagree is split.
+  // Give each corner its frame; a vertex whose corners disagree is split. New vertices are
+  // numbered in the order their corners come; the copies of one vertex are chained (`next`).
+  constexpr std::uint32_t kNone = ~std::uint32_t{0};
   std::vector<Vertex> vertices;
   vertices.reserve(primitive.vertices.size());
-  std::map<std::tuple<std::uint32_t, float, float, float, float>, std::uint32_t> split;
-  std::vector<bool> used(primitive.vertices.size(), false);
+  std::vector<std::uint32_t> firstCopy(primitive.vertices.size(), kNone);
+  std::vector<std::uint32_t> nextCopy;
+  nextCopy.reserve(primitive.vertices.size());
   for (std::size_t c = 0; c < primitive.indices.size(); ++c) {
     const std::uint32_t index = primitive.indices[c];
-    Vertex vertex = primitive.vertices[index];
-    vertex.tangent = finishFrame(corners[c], vertex.normal);
-    const auto key = std::make_tuple(index, vertex.tangent.x, vertex.tangent.y, vertex.tangent.z,
-                                     vertex.tangent.w);
-    const auto [it, inserted] = split.emplace(key, static_cast<std::uint32_t>(vertices.size()));
-    if (inserted) vertices.push_back(vertex);
-    primitive.indices[c] = it->second;
-    used[index] = true;
+    const glm::vec4 tangent = finishFrame(corners[c], primitive.vertices[index].normal);
+    std::uint32_t* link = &firstCopy[index];
+    while (*link != kNone && vertices[*link].tangent != tangent) link = &nextCopy[*link];
+    if (*link == kNone) {
+      *link = static_cast<std::uint32_t>(vertices.size());
+      vertices.push_back(primitive.vertices[index]);
+      vertices.back().tangent = tangent;
+      nextCopy.push_back(kNone);
+    }
+    primitive.indices[c] = *link;
   }
   // Vertices no triangle uses keep a valid frame too.
   for (std::size_t v = 0; v < primitive.vertices.size(); ++v) {
-    if (used[v]) continue;
+    if (firstCopy[v] != kNone) continue;
     Vertex vertex = primitive.vertices[v];
     vertex.tangent = glm::vec4(anyPerpendicular(vertex.normal), 1.0F);
     vertices.push_back(vertex);
