@@ -3,7 +3,8 @@
 // pixel with the shading code of the hierarchy's paths (include/lgh_shading.glsl: same BRDF and
 // falloff), unshadowed. The singularity clamp is the hierarchy's (d_min = h_1) or the reference's
 // own (uMinDistance2 >= 0: a fixed d_min^2, 0 for none; docs/GI.md says why both). The error metrics of the hierarchy (relative RMSE,
-// PSNR) are measured against this image. Lights stream through shared memory in batches of 64.
+// PSNR) are measured against this image. Lights stream through shared memory, a work group (64)
+// at a time.
 // With LGH_SHADOWED, the shadowed reference: the lights come in chunks of uChunkCount from
 // uChunkFirst on, each with a shadow ray per pixel traced by the Vulkan side (visibility bit r:
 // light uChunkFirst + r), and every chunk adds onto the image (the first one writes it).
@@ -18,9 +19,11 @@
 uniform uint uChunkFirst;
 #endif
 
-#define GROUP 64
+// The pass dispatches gl::groups2D work groups: their size is LGH_GROUP_2D's, one light per
+// invocation in each batch.
+#define GROUP (LGH_GROUP_2D * LGH_GROUP_2D)
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
 
 layout(std430, binding = LGH_BIND_POINT_LIGHTS) readonly buffer LghPointLights {
   PointLight pointLights[];
