@@ -95,6 +95,7 @@ TEST(SceneWorker, AnswersInTheArenaAndInMemoryOfTheirOwnAreTheSameScenes) {
     lgh::SceneWorkerOptions options = workerOptions();
     options.answerArenaBytes = arenaBytes;
     lgh::worker::SceneWorker worker(options);
+    EXPECT_EQ(worker.hasAnswerArena(), arenaBytes > 0);
     for (const std::string& asset : assets) {
       SCOPED_TRACE(asset);
       const lgh::worker::LoadJob job = assetJob(asset);

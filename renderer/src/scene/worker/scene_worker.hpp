@@ -30,6 +30,8 @@ class SceneWorker {
   Scene load(const LoadJob& job);
 
   pid_t pid() const { return pid_; }
+  // Whether the running worker's answers come in its answer arena (when they fit).
+  bool hasAnswerArena() const { return answers_ != nullptr; }
 
  private:
   void start();
