@@ -5,9 +5,12 @@
 // answers --scene-parser-worker as lghd does, parsing real assimp test models.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <future>
 #include <optional>
+#include <random>
 #include <string>
 #include <thread>
 #include <vector>
@@ -78,6 +81,50 @@ TEST(SceneWorkerPool, ALoadWithoutATurnQueuesBehindTheTurnsTakenBeforeIt) {
   hinted.reset();
   drawn.join();
   EXPECT_TRUE(done);
+}
+
+// Many turns at once over three workers, their loads started in a shuffled order and every
+// fifth turn dropped unused: each waiting load is woken only when its own turn comes (the pool
+// wakes no other), so a wake lost anywhere would leave loads waiting for ever. Every load must
+// finish, with its scene.
+TEST(SceneWorkerPool, ManyTurnsOverSeveralWorkersAllFinishWhateverOrderTheyArriveIn) {
+  lgh::SceneWorkerOptions options = workerOptions();
+  options.processes = 3;
+  SceneWorkerPool pool(options);
+  constexpr int kTurns = 30;
+  std::vector<std::optional<SceneWorkerPool::Turn>> turns;
+  for (int i = 0; i < kTurns; ++i) turns.emplace_back(pool.reserveTurn());
+  std::vector<int> order(kTurns);
+  for (int i = 0; i < kTurns; ++i) order[static_cast<std::size_t>(i)] = i;
+  std::shuffle(order.begin(), order.end(), std::mt19937(7));
+  const std::vector<std::string> assets = {"BoxTextured-glTF/BoxTextured.gltf",
+                                           "cameras/Cameras.gltf",
+                                           "2CylinderEngine-glTF-Binary/2CylinderEngine.glb"};
+  std::vector<std::future<std::string>> names(kTurns);
+  for (const int i : order) {
+    auto& turn = turns[static_cast<std::size_t>(i)];
+    if (i % 5 == 2) {
+      turn.reset();  // dropped unused
+      continue;
+    }
+    const std::string& asset = assets[static_cast<std::size_t>(i) % assets.size()];
+    names[static_cast<std::size_t>(i)] =
+        std::async(std::launch::async, [&pool, asset, mine = std::move(*turn)]() mutable {
+          return pool.load(assetJob(asset), std::move(mine)).name;
+        });
+    turn.reset();
+  }
+  for (int i = 0; i < kTurns; ++i) {
+    auto& name = names[static_cast<std::size_t>(i)];
+    if (!name.valid()) continue;
+    ASSERT_EQ(name.wait_for(std::chrono::seconds(60)), std::future_status::ready)
+        << "turn " << i << " never got a worker";
+    const std::string& asset = assets[static_cast<std::size_t>(i) % assets.size()];
+    const lgh::worker::LoadJob job = assetJob(asset);
+    EXPECT_EQ(name.get(),
+              lgh::loadSceneSource(job.source, job.assetRoot, job.limits, job.options).name)
+        << "turn " << i;
+  }
 }
 
 // Large and small answers in turn, through one worker each: with the default arena (every answer
