@@ -93,6 +93,7 @@ TEST(SceneWorkerPool, ManyTurnsOverSeveralWorkersAllFinishWhateverOrderTheyArriv
   SceneWorkerPool pool(options);
   constexpr int kTurns = 30;
   std::vector<std::optional<SceneWorkerPool::Turn>> turns;
+  turns.reserve(kTurns);
   for (int i = 0; i < kTurns; ++i) turns.emplace_back(pool.reserveTurn());
   std::vector<int> order(kTurns);
   for (int i = 0; i < kTurns; ++i) order[static_cast<std::size_t>(i)] = i;
