@@ -24,19 +24,16 @@ float lghToneMap(float x, int mode) {
   return x;
 }
 
-// The number of thresholds at or below `value` (in [0, 1]): binary search over the 255.
+// The number of thresholds at or below `value` (in [0, 1]). The sRGB curve in float arithmetic
+// guesses the code to within one; the thresholds then decide, so the guess's rounding never shows.
+// The two steps cost two table reads where a binary search over the 255 took eight, each a
+// gather with its own branch on a SIMD CPU rasteriser (llvmpipe): see docs/BENCHMARKS.md.
 uint lghSrgbCode(float value) {
-  int low = 0;
-  int high = 255;
-  while (low < high) {
-    int middle = (low + high) >> 1;
-    if (value >= uSrgbThresholds[middle]) {
-      low = middle + 1;
-    } else {
-      high = middle;
-    }
-  }
-  return uint(low);
+  float encoded = value <= 0.0031308 ? value * 12.92 : 1.055 * pow(value, 1.0 / 2.4) - 0.055;
+  int code = clamp(int(encoded * 255.0 + 0.5), 0, 255);
+  if (value < uSrgbThresholds[max(code - 1, 0)] && code > 0) --code;
+  if (value >= uSrgbThresholds[min(code, 254)] && code < 255) ++code;
+  return uint(code);
 }
 
 uint lghDisplayChannel(float linear, int toneMap, float exposure) {

@@ -202,13 +202,24 @@ double BatchTransport::trace(const BuffersFor& buffersFor, std::span<const std::
 }
 
 void BatchTransport::awaitResults() {
+  if (submittedTrace_ != 0) {
+    const std::uint64_t trace = std::exchange(submittedTrace_, 0);
+    tracer_.awaitTrace(trace);
+    for (std::size_t i = 0; i < layout_.buffers.size(); ++i) {
+      const auto [mapped, bytes] = std::exchange(copyBack_[i], {});
+      if (mapped == nullptr) continue;
+      glNamedBufferSubData(staging_[i].id(), 0, static_cast<GLsizeiptr>(bytes), mapped);
+    }
+    return;
+  }
   if (mode_ != Mode::InteropSemaphores) return;
   const auto [waited, waitCount] = interopBuffers(&BatchBufferUse::waited);
   glWaitSemaphoreEXT(vkDone_.id(), waitCount, waited.data(), 0, nullptr, nullptr);
 }
 
 double BatchTransport::handOver(const BuffersFor& buffersFor, std::span<const std::uint64_t> bytes,
-                                const TraceOnVulkan& traceOnVulkan) {
+                                const TraceOnVulkan& traceOnVulkan,
+                                const SubmitOnVulkan& submitOnVulkan) {
   if (bytes.size() != layout_.buffers.size()) {
     throw Error(ErrorCode::Internal, fmt::format("{}: a batch traced with the sizes of {} buffers",
                                                  layout_.logPrefix, bytes.size()));
@@ -233,6 +244,14 @@ double BatchTransport::handOver(const BuffersFor& buffersFor, std::span<const st
     if (!layout_.buffers[i].glWrites) continue;
     glGetNamedBufferSubData(staging_[i].id(), 0, static_cast<GLsizeiptr>(bytes[i]),
                             buffers.parts[i]->mapped);
+  }
+  if (submitOnVulkan) {
+    // The copies back wait for awaitResults(): GL draws on while Vulkan traces.
+    submittedTrace_ = submitOnVulkan();
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!layout_.buffers[i].glWrites) copyBack_[i] = {buffers.parts[i]->mapped, bytes[i]};
+    }
+    return cpu.elapsedMs();
   }
   traceOnVulkan(false);
   for (std::size_t i = 0; i < count; ++i) {

@@ -58,6 +58,9 @@ class BatchTransport {
   using BuffersFor = std::function<BatchBuffers(vk::Transport)>;
   // Traces the batch at hand on the tracer, with or without the semaphores.
   using TraceOnVulkan = std::function<void(bool useSemaphores)>;
+  // Submits the batch at hand without semaphores and returns the trace's number, which
+  // ShadowTracer::awaitTrace waits for (ShadowTracer::submitTrace).
+  using SubmitOnVulkan = std::function<std::uint64_t()>;
 
   BatchTransport(vk::ShadowTracer& tracer, BatchLayout layout);
   ~BatchTransport();
@@ -75,11 +78,14 @@ class BatchTransport {
                const TraceOnVulkan& traceOnVulkan);
   // The first half of trace(): with semaphores, GL signals and Vulkan's trace is submitted, and
   // GL's commands issued before awaitResults() run while Vulkan traces (they must not touch the
-  // batch's buffers); the other transports finish the whole trace here.
+  // batch's buffers). Staging with `submitOnVulkan` copies GL's inputs over and submits the
+  // trace, which runs while the CPU goes on; without it, and interop-finish, finish the whole
+  // trace here.
   double handOver(const BuffersFor& buffersFor, std::span<const std::uint64_t> bytes,
-                  const TraceOnVulkan& traceOnVulkan);
-  // The second half: GL's next commands wait for the trace handed over last (semaphores; the
-  // other transports have nothing left to do). Once per handOver().
+                  const TraceOnVulkan& traceOnVulkan, const SubmitOnVulkan& submitOnVulkan = {});
+  // The second half: GL's next commands wait for the trace handed over last (semaphores), or
+  // the CPU waits for it and copies its results back (staging with a submitted trace); the
+  // other transports have nothing left to do. Once per handOver().
   void awaitResults();
 
   // "interop" (semaphores), "interop-finish" or "staging".
@@ -109,6 +115,10 @@ class BatchTransport {
   std::array<GLuint, kMaxBatchBuffers> ids_{};
   gl::Semaphore glDone_ = gl::Semaphore::empty();
   gl::Semaphore vkDone_ = gl::Semaphore::empty();
+  // Staging: the trace submitted last and not awaited yet (0: none), and what to copy back after
+  // it: per buffer Vulkan's mapped bytes and their count (null: a buffer GL wrote).
+  std::uint64_t submittedTrace_ = 0;
+  std::array<std::pair<const void*, std::uint64_t>, kMaxBatchBuffers> copyBack_{};
 };
 
 }  // namespace lgh

@@ -56,9 +56,10 @@ double RayBatchTransport::trace(const vk::TraceScene& scene, vk::TracePath path,
 
 double RayBatchTransport::handOver(const vk::TraceScene& scene, vk::TracePath path,
                                    const vk::RayBatchShape& shape, const vk::TraceParams& params) {
-  return transport_.handOver(buffersFor(shape), batchBytes(shape), [&](bool useSemaphores) {
-    tracer_.trace(scene, path, shape, params, useSemaphores, lane_);
-  });
+  return transport_.handOver(
+      buffersFor(shape), batchBytes(shape),
+      [&](bool useSemaphores) { tracer_.trace(scene, path, shape, params, useSemaphores, lane_); },
+      [&] { return tracer_.submitTrace(scene, path, shape, params, lane_); });
 }
 
 }  // namespace lgh

@@ -124,6 +124,7 @@ void HitTracer::trace(const AccelerationScene& scene, TracePath path, const HitB
                     .transport = buffers_.shared().transport,
                     .buffers = shared},
                    useSemaphores ? &*semaphores_ : nullptr);
+  if (!useSemaphores) submissions_.retire(slot);
 }
 
 TraceTimings HitTracer::collectTimings() {

@@ -257,6 +257,16 @@ class ShadowTracer {
     trace(scene, path, shape, params, useSemaphores, 0);
   }
 
+  // trace() without semaphores that returns once the work is submitted, with the trace's number
+  // (lastTrace()). The caller has made the inputs visible (the staging copy) and calls
+  // awaitTrace() with the number before it reads the visibility: one frame's rays are traced
+  // while GL draws the next one where the drivers share no semaphores (Mesa). Throws as trace().
+  virtual std::uint64_t submitTrace(const TraceScene& scene, TracePath path,
+                                    const RayBatchShape& shape, const TraceParams& params,
+                                    RayLane lane) = 0;
+  // Returns once the traces numbered `number` and lower have finished on the GPU.
+  virtual void awaitTrace(std::uint64_t number) = 0;
+
   // Traces are numbered 1, 2, ... by the tracer: the number of the last trace() (0: none).
   virtual std::uint64_t lastTrace() const = 0;
   // The GPU time of the traces up to and including number `through` that no earlier call

@@ -31,7 +31,6 @@ void submitTraceBatch(TraceSubmissions& submissions, std::uint32_t slot, std::ui
   submissions.submit(slot, semaphores != nullptr ? semaphores->glDone() : ::vk::Semaphore{},
                      ::vk::PipelineStageFlagBits::eAllCommands,
                      semaphores != nullptr ? semaphores->vkDone() : ::vk::Semaphore{});
-  if (semaphores == nullptr) submissions.retire(slot);
 }
 
 }  // namespace lgh::vk

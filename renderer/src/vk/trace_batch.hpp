@@ -1,9 +1,9 @@
 // One batch on the GPU, the same for shadow rays and closest hits: its commands recorded into a
 // submission slot (timestamps around the barriers that hand the buffers shared with GL to the
 // trace and back, and the recorder's launch), then submitted. With semaphores, every command
-// waits for GL's `glDone` (the first timestamp too: the GPU time is the trace's alone), `vkDone`
-// is signalled and the call returns once the work is submitted; without, it returns when the GPU
-// is done.
+// waits for GL's `glDone` (the first timestamp too: the GPU time is the trace's alone) and
+// `vkDone` is signalled. The call returns once the work is submitted: a caller without semaphores
+// retires the slot (TraceSubmissions::retire) before it reads what the trace wrote.
 #pragma once
 
 #include <cstddef>

@@ -60,13 +60,17 @@ void TraceSubmissions::retireAll() {
   for (std::uint32_t i = 0; i < slots; ++i) retire((next_ + i) % slots);
 }
 
-double TraceSubmissions::takeGpuMs(std::uint64_t through) {
+void TraceSubmissions::retireThrough(std::uint64_t through) {
   // Oldest first, as retireAll(), and only as far as `through`.
   const auto slots = static_cast<std::uint32_t>(fences_.size());
   for (std::uint32_t i = 0; i < slots; ++i) {
     const std::uint32_t slot = (next_ + i) % slots;
     if (inFlight_[slot] && numberOf_[slot] <= through) retire(slot);
   }
+}
+
+double TraceSubmissions::takeGpuMs(std::uint64_t through) {
+  retireThrough(through);
   double gpuMs = 0.0;
   std::erase_if(banked_, [&](const std::pair<std::uint64_t, double>& entry) {
     if (entry.first > through) return false;

@@ -35,6 +35,8 @@ class TraceSubmissions {
   void retire(std::uint32_t slot);
   // Retires every slot in flight.
   void retireAll();
+  // Retires the slots in flight whose submissions are numbered `through` or lower.
+  void retireThrough(std::uint64_t through);
   // The GPU time of submissions up to and including number `through` that no earlier call
   // returned, summed; waits for those still running, not for later ones.
   double takeGpuMs(std::uint64_t through);

@@ -146,27 +146,21 @@ class VulkanShadowTracer final : public ShadowTracer {
   void trace(const TraceScene& scene, TracePath path, const RayBatchShape& shape,
              const TraceParams& params, bool useSemaphores, RayLane lane) override {
     translateVulkanErrors("trace", [&] {
-      const AccelerationScene& built = ownScene(scene);
-      const TraceRecorder& recorder = pathFor(path);
-      checkBatch(shape, useSemaphores, lane);
-      const RayBufferSet& buffers = rayBuffers_[lane];
-      const std::uint32_t slot = submissions_.acquire();
-      layout_.write(slot, {.scene = built.topLevel(),
-                           .origins = buffers.origins(),
-                           .targets = buffers.targets(),
-                           .visibility = buffers.visibility()});
-      const TracePushConstants constants = pushConstants(shape, params);
-      const std::array<::vk::Buffer, 3> shared{buffers.origins(), buffers.targets(),
-                                               buffers.visibility()};
-      submitTraceBatch(submissions_, slot, device_->queueFamily(),
-                       {.recorder = &recorder,
-                        .set = layout_.set(slot),
-                        .constants = constantBytes(constants),
-                        .launch = {.width = shape.width, .height = shape.height},
-                        .transport = buffers.shared().transport,
-                        .buffers = shared},
-                       useSemaphores ? &*semaphores_[lane] : nullptr);
+      const std::uint32_t slot = submitRays(scene, path, shape, params, useSemaphores, lane);
+      if (!useSemaphores) submissions_.retire(slot);
     });
+  }
+
+  std::uint64_t submitTrace(const TraceScene& scene, TracePath path, const RayBatchShape& shape,
+                            const TraceParams& params, RayLane lane) override {
+    return translateVulkanErrors("trace", [&] {
+      submitRays(scene, path, shape, params, false, lane);
+      return submissions_.lastSubmission();
+    });
+  }
+
+  void awaitTrace(std::uint64_t number) override {
+    translateVulkanErrors("awaitTrace", [&] { submissions_.retireThrough(number); });
   }
 
   std::uint64_t lastTrace() const override { return submissions_.lastSubmission(); }
@@ -239,6 +233,32 @@ class VulkanShadowTracer final : public ShadowTracer {
                   fmt::format("ray lane {}: the tracer has lanes 0 to {}", lane, kRayLanes - 1));
     }
     return lane;
+  }
+
+  // Records and submits the batch in `lane`'s buffers; returns its submission slot.
+  std::uint32_t submitRays(const TraceScene& scene, TracePath path, const RayBatchShape& shape,
+                           const TraceParams& params, bool useSemaphores, RayLane lane) {
+    const AccelerationScene& built = ownScene(scene);
+    const TraceRecorder& recorder = pathFor(path);
+    checkBatch(shape, useSemaphores, lane);
+    const RayBufferSet& buffers = rayBuffers_[lane];
+    const std::uint32_t slot = submissions_.acquire();
+    layout_.write(slot, {.scene = built.topLevel(),
+                         .origins = buffers.origins(),
+                         .targets = buffers.targets(),
+                         .visibility = buffers.visibility()});
+    const TracePushConstants constants = pushConstants(shape, params);
+    const std::array<::vk::Buffer, 3> shared{buffers.origins(), buffers.targets(),
+                                             buffers.visibility()};
+    submitTraceBatch(submissions_, slot, device_->queueFamily(),
+                     {.recorder = &recorder,
+                      .set = layout_.set(slot),
+                      .constants = constantBytes(constants),
+                      .launch = {.width = shape.width, .height = shape.height},
+                      .transport = buffers.shared().transport,
+                      .buffers = shared},
+                     useSemaphores ? &*semaphores_[lane] : nullptr);
+    return slot;
   }
 
   void checkBatch(const RayBatchShape& shape, bool useSemaphores, RayLane lane) const {
