@@ -1,19 +1,23 @@
 #version 450 core
-// Composite pass (compute: see direct_lighting.comp for why): sums the lighting buffers into the final linear colour and puts the background
-// (or transparency) where no geometry was drawn. The LGH lighting is unshadowed; the filtered
-// shadow ratio scales it when the frame has one.
+// Composite pass (compute: see direct_lighting.comp for why): sums the lighting buffers into the
+// final linear colour and puts the background (or transparency) where no geometry was drawn.
+// The LGH lighting is unshadowed; the filtered shadow ratio scales it when the frame has one.
+// Frames with direct lighting alone and no blended surfaces skip it: their direct lighting pass
+// writes the output (LGH_FINAL_OUTPUT of direct_lighting.comp).
 //
-// It writes what the frame is read back as, with the rows turned over (the first row GL stores is
-// the image's top row, so no one flips them on the CPU):
-//   LGH_DISPLAY_OUTPUT  PNG: exposure, tone map and sRGB as 8-bit codes (RGBA8UI target)
-//   otherwise           EXR: linear light (LGH_OUTPUT_FORMAT: rgba16f or rgba32f target)
+// It writes what the frame is read back as (include/frame_output.glsl: display codes for a PNG,
+// linear light for an EXR, the rows turned over), or
 //   LGH_SCENE_TARGET    frames with blended surfaces: linear light into the scene target, rows as
 //                       GL stores them (the display pass turns them over after the forward blend)
 // Output: image unit LGH_IMAGE_OUTPUT.
 
 #include "include/slots.glsl"
-#ifdef LGH_DISPLAY_OUTPUT
-#include "include/display_transform.glsl"
+#ifdef LGH_SCENE_TARGET
+layout(binding = LGH_IMAGE_OUTPUT, rgba32f) writeonly uniform image2D uScene;
+uniform int uHeight;
+uniform vec4 uBackground;  // rgb, a = alpha of the background (0 when transparent)
+#else
+#include "include/frame_output.glsl"
 #endif
 
 layout(binding = 0) uniform sampler2D uDirect;
@@ -23,18 +27,9 @@ layout(binding = LGH_UNIT_COMPOSITE_RATIO) uniform sampler2D uShadowRatio;
 
 uniform bool uHasIndirect;
 uniform bool uHasShadowRatio;
-uniform vec4 uBackground;  // rgb, a = alpha of the background (0 when transparent)
 uniform int uWidth;
-uniform int uHeight;       // of the frame, to turn the rows over
 
 layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
-#ifdef LGH_DISPLAY_OUTPUT
-uniform int uToneMap;  // LGH_TONE_MAP_*
-uniform float uExposure;
-layout(binding = LGH_IMAGE_OUTPUT, rgba8ui) writeonly uniform uimage2D uCodes;
-#else
-layout(binding = LGH_IMAGE_OUTPUT, LGH_OUTPUT_FORMAT) writeonly uniform image2D uColor;
-#endif
 
 vec4 linearColor(ivec2 pixel) {
   if (texelFetch(uCoverage, pixel, 0).w < 0.5) return uBackground;
@@ -47,20 +42,11 @@ vec4 linearColor(ivec2 pixel) {
 }
 
 void main() {
-  ivec2 target = ivec2(gl_GlobalInvocationID.xy);
-  if (target.x >= uWidth || target.y >= uHeight) return;
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (pixel.x >= uWidth || pixel.y >= uHeight) return;
 #ifdef LGH_SCENE_TARGET
-  ivec2 pixel = target;
+  imageStore(uScene, pixel, linearColor(pixel));
 #else
-  ivec2 pixel = ivec2(target.x, uHeight - 1 - target.y);
-#endif
-  vec4 color = linearColor(pixel);
-#ifdef LGH_DISPLAY_OUTPUT
-  imageStore(uCodes, target,
-             uvec4(lghDisplayChannel(color.r, uToneMap, uExposure),
-                   lghDisplayChannel(color.g, uToneMap, uExposure),
-                   lghDisplayChannel(color.b, uToneMap, uExposure), lghAlpha8(color.a)));
-#else
-  imageStore(uColor, target, color);
+  storeOutput(outputTarget(pixel), linearColor(pixel));
 #endif
 }

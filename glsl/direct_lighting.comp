@@ -9,7 +9,10 @@
 // primitive; their pixels scale it by the ratio of their shadowed to their unshadowed per-pixel
 // sum (the ratio estimator the LGH's shadows use too), so that shadows keep the pixel's detail.
 // Inputs: G-buffer (include/gbuffer.glsl), lights SSBO, shadow-ray visibility bits.
-// Output: HDR radiance (image unit LGH_IMAGE_OUTPUT).
+// Output: HDR radiance (image unit LGH_IMAGE_OUTPUT); with LGH_FINAL_OUTPUT, for frames with
+// nothing to composite (no LGH lighting, no blended surfaces), the frame's output itself, as the
+// composite pass would write it (include/frame_output.glsl): one full-screen pass less, which a
+// CPU rasteriser feels (docs/BENCHMARKS.md).
 // A compute pass, not a fullscreen triangle: on GPUs with few graphics units (Hopper) a fragment
 // pass runs on a small part of the chip. Compiled for the frame's material models and layers
 // (LGH_BRDF_MODELS / LGH_BRDF_LAYERS of include/brdf.glsl), as the LGH kernels are.
@@ -20,8 +23,13 @@
 #include "include/light_terms.glsl"
 #include "include/ray_batch.glsl"
 
-layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
+#ifdef LGH_FINAL_OUTPUT
+#include "include/frame_output.glsl"
+#else
 layout(binding = LGH_IMAGE_OUTPUT, rgba16f) writeonly uniform image2D uRadiance;
+#endif
+
+layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
 
 uniform int uLightCount;
 uniform vec3 uCameraPosition;
@@ -35,6 +43,7 @@ float selfShadowVisibility(SurfacePoint s, int light) {
   return light < 23 && (s.selfShadowMask & (1u << uint(light))) != 0u ? 0.0 : 1.0;
 }
 
+// Alpha 0 where nothing was drawn (the final output: the background there).
 vec4 directRadiance(ivec2 pixel) {
   SurfacePoint s;
   if (!readSurface(pixel, s)) return vec4(0.0);
@@ -64,5 +73,12 @@ vec4 directRadiance(ivec2 pixel) {
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= uFrameWidth || pixel.y >= uFrameHeight) return;
-  imageStore(uRadiance, pixel, directRadiance(pixel));
+  vec4 radiance = directRadiance(pixel);
+#ifdef LGH_FINAL_OUTPUT
+  // Full float: the composite reads the radiance rounded to half floats, so a code may differ
+  // by one step from a composited frame's.
+  storeOutput(outputTarget(pixel), radiance.a > 0.5 ? radiance : uBackground);
+#else
+  imageStore(uRadiance, pixel, radiance);
+#endif
 }

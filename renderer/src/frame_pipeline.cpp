@@ -91,24 +91,25 @@ std::optional<RemainingPasses> FramePipeline::drawUntilShadows(const RenderReque
 }
 
 void FramePipeline::finishDraw(const RemainingPasses& remaining, gl::GpuTimer& timer) {
-  FrameSet& set = frameSet(remaining.set);
-  directLighting(set, remaining, timer);
-  {
-    gl::ScopedGpuPass pass(timer, "composite");
-    compositePass_.run(remaining.output, remaining.pixels, false, 0, set.targets);
-  }
+  // A split frame has no LGH lighting and no blended surfaces: nothing to composite.
+  directLighting(frameSet(remaining.set), remaining, timer, true);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glFlush();
 }
 
 void FramePipeline::directLighting(FrameSet& set, const RemainingPasses& remaining,
-                                   gl::GpuTimer& timer) {
+                                   gl::GpuTimer& timer, bool toOutput) {
   set.shadows.awaitVisibility();
   gl::ScopedGpuPass pass(timer, "direct lighting");
-  directLightingPass_.run(
-      {set.lightBuffer.id(), remaining.lightCount, set.shadows.layout(), set.shadows.visibility(),
-       remaining.ambient, remaining.brdf, remaining.emission},
-      remaining.camera, set.targets);
+  const DirectLightingInputs inputs{
+      set.lightBuffer.id(), remaining.lightCount, set.shadows.layout(), set.shadows.visibility(),
+      remaining.ambient,    remaining.brdf,       remaining.emission};
+  if (toOutput) {
+    directLightingPass_.runToOutput(inputs, remaining.camera, remaining.output, remaining.pixels,
+                                    set.targets);
+  } else {
+    directLightingPass_.run(inputs, remaining.camera, set.targets);
+  }
 }
 
 std::optional<RemainingPasses> FramePipeline::drawInto(FrameSet& set, const RenderRequest& request,
@@ -181,7 +182,14 @@ std::optional<RemainingPasses> FramePipeline::drawInto(FrameSet& set, const Rend
     glFlush();  // the G-buffer and the rays' set-up start while the CPU goes on
     return remaining;
   }
-  directLighting(set, remaining, timer);
+  // Direct lighting alone, unblended: its pass writes the output, and there is no composite.
+  const bool composites = lgh.enabled || blends || probe != nullptr;
+  directLighting(set, remaining, timer, !composites);
+  if (!composites) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glFlush();  // the GPU starts on the frame while the CPU goes on
+    return std::nullopt;
+  }
   const GLuint shadowRatio =
       shadows.filterLgh(shadowSettings.filterIterations, camera, targets, timer);
   if (probe != nullptr && lgh.enabled) finishProbe(shadowRatio, camera, *probe);

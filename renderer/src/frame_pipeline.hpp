@@ -102,7 +102,9 @@ class FramePipeline {
                                           const CachedScene& scene, gl::GpuTimer& timer,
                                           FrameReport& report, OutputPixels pixels, bool maySplit,
                                           LghFrameProbe* probe);
-  void directLighting(FrameSet& set, const RemainingPasses& remaining, gl::GpuTimer& timer);
+  // `toOutput`: the frame has nothing to composite, and the pass writes its output.
+  void directLighting(FrameSet& set, const RemainingPasses& remaining, gl::GpuTimer& timer,
+                      bool toOutput);
   static void reportScene(const CachedScene& scene, FrameReport& report);
   // The probe's shadowed reference traces its rays here; its outputs that need the shadows.
   void prepareProbe(const RenderRequest& request, const CachedScene& scene, LghFrameProbe& probe);

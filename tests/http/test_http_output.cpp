@@ -145,7 +145,7 @@ TEST(OutputPipeline, TimingRowsShowTheQueueAndTheEncoding) {
   const json rows = json::parse(answer->get_header_value("X-Lgh-Timings"));
   std::set<std::string> names;
   for (const json& row : rows) names.insert(row["pass"].get<std::string>());
-  for (const char* name : {"queue", "scene load", "upload", "submit", "composite", "readback",
+  for (const char* name : {"queue", "scene load", "upload", "submit", "direct lighting", "readback",
                            "frame wait", "encode wait", "encode", "total"}) {
     EXPECT_TRUE(names.contains(name)) << name << " in " << rows.dump();
   }

@@ -71,20 +71,40 @@ GLenum imageFormat(OutputPixels pixels) {
 }
 
 gl::Program buildCompositeProgram(OutputPixels pixels, bool toScene) {
-  std::string defines;
-  if (toScene) defines += "#define LGH_SCENE_TARGET 1\n";
-  if (pixels == OutputPixels::Display8) {
-    defines += "#define LGH_DISPLAY_OUTPUT 1\n";
-  } else {
-    defines += pixels == OutputPixels::LinearHalf ? "#define LGH_OUTPUT_FORMAT rgba16f\n"
-                                                  : "#define LGH_OUTPUT_FORMAT rgba32f\n";
-  }
-  gl::Program program = gl::buildComputeProgram("composite.comp", defines);
+  if (toScene) return gl::buildComputeProgram("composite.comp", "#define LGH_SCENE_TARGET 1\n");
+  gl::Program program = gl::buildComputeProgram("composite.comp", frameOutputDefines(pixels));
   if (pixels == OutputPixels::Display8) uploadSrgbThresholds(program.id());
   return program;
 }
 
+void setBackground(GLuint program, const OutputSettings& output) {
+  const float alpha = output.transparentBackground ? 0.0F : 1.0F;
+  const auto& bg = output.background;
+  glProgramUniform4f(program, glGetUniformLocation(program, "uBackground"), bg[0] * alpha,
+                     bg[1] * alpha, bg[2] * alpha, alpha);
+}
+
 }  // namespace
+
+std::string frameOutputDefines(OutputPixels pixels) {
+  switch (pixels) {
+    case OutputPixels::Display8:
+      return "#define LGH_DISPLAY_OUTPUT 1\n";
+    case OutputPixels::LinearHalf:
+      return "#define LGH_OUTPUT_FORMAT rgba16f\n";
+    case OutputPixels::LinearFloat:
+      return "#define LGH_OUTPUT_FORMAT rgba32f\n";
+  }
+  return "#define LGH_OUTPUT_FORMAT rgba32f\n";
+}
+
+void bindFrameOutput(GLuint program, const OutputSettings& output, OutputPixels pixels,
+                     FrameTargets& targets) {
+  setDisplayUniforms(program, output, targets.height);
+  setBackground(program, output);
+  glBindImageTexture(LGH_IMAGE_OUTPUT, targets.output(pixels).texture.id(), 0, GL_FALSE, 0,
+                     GL_WRITE_ONLY, imageFormat(pixels));
+}
 
 const gl::Program& CompositePass::program(OutputPixels pixels, bool toScene) {
   // The scene target is linear float; the outputs one program per kind of pixels.
@@ -107,24 +127,24 @@ void CompositePass::runToScene(const OutputSettings& output, bool hasIndirect, G
 
 void CompositePass::dispatch(const OutputSettings& output, OutputPixels pixels, bool toScene,
                              bool hasIndirect, GLuint shadowRatio, FrameTargets& targets) {
-  const OutputTarget& target = toScene ? targets.sceneLinear() : targets.output(pixels);
   const GLuint program = this->program(pixels, toScene).id();
   glUseProgram(program);
   glProgramUniform1i(program, glGetUniformLocation(program, "uHasIndirect"), hasIndirect ? 1 : 0);
   glProgramUniform1i(program, glGetUniformLocation(program, "uHasShadowRatio"),
                      shadowRatio != 0 ? 1 : 0);
   glProgramUniform1i(program, glGetUniformLocation(program, "uWidth"), targets.width);
-  setDisplayUniforms(program, output, targets.height);
   glBindTextureUnit(LGH_UNIT_COMPOSITE_RATIO, shadowRatio);
-  const float alpha = output.transparentBackground ? 0.0F : 1.0F;
-  const auto& bg = output.background;
-  glProgramUniform4f(program, glGetUniformLocation(program, "uBackground"), bg[0] * alpha,
-                     bg[1] * alpha, bg[2] * alpha, alpha);
   const GLuint textures[3] = {targets.direct.id(), targets.indirect.id(),
                               targets.gbuffer.position.id()};
   glBindTextures(0, 3, textures);
-  glBindImageTexture(LGH_IMAGE_OUTPUT, target.texture.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                     imageFormat(toScene ? OutputPixels::LinearFloat : pixels));
+  if (toScene) {
+    glProgramUniform1i(program, glGetUniformLocation(program, "uHeight"), targets.height);
+    setBackground(program, output);
+    glBindImageTexture(LGH_IMAGE_OUTPUT, targets.sceneLinear().texture.id(), 0, GL_FALSE, 0,
+                       GL_WRITE_ONLY, GL_RGBA32F);
+  } else {
+    bindFrameOutput(program, output, pixels, targets);
+  }
   glDispatchCompute(gl::groups2D(targets.width), gl::groups2D(targets.height), 1);
   // Read next by the pixel pack pass, a read-back, or the forward blend's framebuffer.
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |

@@ -52,6 +52,13 @@ void setDisplayUniforms(GLuint program, const OutputSettings& output, int height
 // What a frame of `output` is composited to: display codes for PNG, half or float for EXR.
 OutputPixels outputPixelsFor(const OutputSettings& output);
 
+// The defines of a program that writes output(pixels) through include/frame_output.glsl.
+std::string frameOutputDefines(OutputPixels pixels);
+// Binds output(pixels) to such a program's image unit and sets its uniforms: the frame's height,
+// the background, and for display codes the tone map and exposure.
+void bindFrameOutput(GLuint program, const OutputSettings& output, OutputPixels pixels,
+                     FrameTargets& targets);
+
 // Reads a LinearFloat output now (tests and the benchmark's probes).
 FloatImage readLinearOutput(FrameTargets& targets);
 

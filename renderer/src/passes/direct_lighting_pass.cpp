@@ -7,6 +7,7 @@
 
 #include "gl/shader_library.hpp"
 #include "gl/slots.hpp"
+#include "passes/composite_pass.hpp"
 
 namespace lgh {
 
@@ -18,18 +19,40 @@ void bindGBuffer(const GBufferTargets& gbuffer) {
   glBindTextureUnit(LGH_UNIT_GBUFFER_LAYERS, gbuffer.layers.id());
 }
 
-GLuint DirectLightingPass::program(const BrdfFeatures& brdf) {
-  const std::string defines = brdf.defines();
+GLuint DirectLightingPass::program(const BrdfFeatures& brdf,
+                                   const std::optional<OutputPixels>& finalOutput) {
+  std::string defines = brdf.defines();
+  if (finalOutput) defines += "#define LGH_FINAL_OUTPUT 1\n" + frameOutputDefines(*finalOutput);
   auto it = programs_.find(defines);
   if (it == programs_.end()) {
-    it = programs_.emplace(defines, gl::buildComputeProgram("direct_lighting.comp", defines)).first;
+    gl::Program program = gl::buildComputeProgram("direct_lighting.comp", defines);
+    if (finalOutput == OutputPixels::Display8) uploadSrgbThresholds(program.id());
+    it = programs_.emplace(defines, std::move(program)).first;
   }
   return it->second.id();
 }
 
 void DirectLightingPass::run(const DirectLightingInputs& inputs, const CameraMatrices& camera,
                              FrameTargets& targets) {
-  const GLuint program = this->program(inputs.brdf);
+  const GLuint program = this->program(inputs.brdf, std::nullopt);
+  glBindImageTexture(LGH_IMAGE_OUTPUT, targets.direct.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                     GL_RGBA16F);
+  dispatch(program, inputs, camera, targets);
+}
+
+void DirectLightingPass::runToOutput(const DirectLightingInputs& inputs,
+                                     const CameraMatrices& camera, const OutputSettings& output,
+                                     OutputPixels pixels, FrameTargets& targets) {
+  const GLuint program = this->program(inputs.brdf, pixels);
+  bindFrameOutput(program, output, pixels, targets);
+  dispatch(program, inputs, camera, targets);
+  // Read next by the pixel pack pass or a read-back, as the composite's output is.
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT |
+                  GL_FRAMEBUFFER_BARRIER_BIT);
+}
+
+void DirectLightingPass::dispatch(GLuint program, const DirectLightingInputs& inputs,
+                                  const CameraMatrices& camera, FrameTargets& targets) {
   glUseProgram(program);
   glProgramUniform1i(program, glGetUniformLocation(program, "uLightCount"), inputs.lightCount);
   glProgramUniform1i(program, glGetUniformLocation(program, "uFrameWidth"), targets.width);
@@ -43,8 +66,6 @@ void DirectLightingPass::run(const DirectLightingInputs& inputs, const CameraMat
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_LIGHTS, inputs.lights);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_VISIBILITY, inputs.visibility);
   bindGBuffer(targets.gbuffer);
-  glBindImageTexture(LGH_IMAGE_OUTPUT, targets.direct.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                     GL_RGBA16F);
   glDispatchCompute(gl::groups2D(targets.width), gl::groups2D(targets.height), 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }

@@ -1,15 +1,19 @@
 // Direct lighting pass.
 //   inputs:  FrameTargets::gbuffer, the frame's lights buffer, the shadow rays' visibility (the
 //            first layout.shadowedLights lights are shadowed), camera position, ambient term
-//   outputs: FrameTargets::direct (HDR radiance, alpha = coverage)
+//   outputs: FrameTargets::direct (HDR radiance, alpha = coverage); or, runToOutput (frames with
+//            nothing to composite: no LGH lighting, no blended surfaces), the frame's output as
+//            the composite pass writes it (passes/composite_pass.hpp), one full-screen pass less
 //   shaders: glsl/direct_lighting.comp (BRDF: glsl/include/brdf.glsl), a compute pass compiled
 //            for the frame's material models and layers (passes/brdf_features.hpp)
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 
 #include "gl/gl_objects.hpp"
+#include "lgh/frame_pixels.hpp"
 #include "lgh/request.hpp"
 #include "passes/brdf_features.hpp"
 #include "passes/frame_targets.hpp"
@@ -34,9 +38,13 @@ struct DirectLightingInputs {
 class DirectLightingPass {
  public:
   void run(const DirectLightingInputs& inputs, const CameraMatrices& camera, FrameTargets& targets);
+  void runToOutput(const DirectLightingInputs& inputs, const CameraMatrices& camera,
+                   const OutputSettings& output, OutputPixels pixels, FrameTargets& targets);
 
  private:
-  GLuint program(const BrdfFeatures& brdf);
+  GLuint program(const BrdfFeatures& brdf, const std::optional<OutputPixels>& finalOutput);
+  void dispatch(GLuint program, const DirectLightingInputs& inputs, const CameraMatrices& camera,
+                FrameTargets& targets);
 
   std::map<std::string, gl::Program> programs_;  // by BrdfFeatures::defines(), built on first use
 };
