@@ -336,6 +336,43 @@ TEST_P(ShadowTracerPath, AnEmptySceneIsFullyVisible) {
   }
 }
 
+// The staging transport's asynchronous traces (vk::ShadowTracer::submitTrace, awaitTrace): two
+// lanes submitted back to back, one wait for the later, and each lane holds the bits that a
+// waited trace() of its batch gives.
+TEST_P(ShadowTracerPath, SubmittedTracesInTwoLanesGiveWhatWaitedTracesGive) {
+  Batch batch = groundGrid(32, 32, 1);
+  for (std::size_t p = 0; p < batch.shape.pixels(); ++p) batch.target(p, 0) = {kPointLight, 1.0F};
+  const std::size_t wordCount = batch.shape.pixels() * batch.shape.words();
+  const std::vector<std::uint32_t> boxWords = trace(*box, batch);
+  const std::vector<std::uint32_t> groundWords = trace(*ground, batch);
+  ASSERT_NE(boxWords, groundWords);  // the box's shadow shows
+  const auto fill = [&](lgh::vk::RayLane lane) {
+    const auto& buffers = tracer->rayBuffers(batch.shape, Transport::Staging, lane);
+    std::memcpy(buffers.origins.mapped, batch.origins.data(),
+                batch.origins.size() * sizeof(glm::vec4));
+    std::memcpy(buffers.targets.mapped, batch.targets.data(),
+                batch.targets.size() * sizeof(glm::vec4));
+    std::memset(buffers.visibility.mapped, 0xFF, wordCount * sizeof(std::uint32_t));
+  };
+  fill(0);
+  fill(1);
+  const std::uint64_t first = tracer->submitTrace(*box, GetParam(), batch.shape, {}, 0);
+  const std::uint64_t second = tracer->submitTrace(*ground, GetParam(), batch.shape, {}, 1);
+  EXPECT_EQ(second, first + 1);
+  EXPECT_EQ(tracer->lastTrace(), second);
+  tracer->awaitTrace(second);  // and so the first
+  const auto words = [&](lgh::vk::RayLane lane) {
+    const auto& buffers = tracer->rayBuffers(batch.shape, Transport::Staging, lane);
+    std::vector<std::uint32_t> out(wordCount);
+    std::memcpy(out.data(), buffers.visibility.mapped, wordCount * sizeof(std::uint32_t));
+    return out;
+  };
+  EXPECT_EQ(words(0), boxWords);
+  EXPECT_EQ(words(1), groundWords);
+  // Their GPU times are banked for the frames that ask, as a waited trace's are.
+  EXPECT_GT(tracer->collectTimingsThrough(second).traceGpuMs, 0.0);
+}
+
 INSTANTIATE_TEST_SUITE_P(Paths, ShadowTracerPath,
                          ::testing::Values(TracePath::RayQuery, TracePath::Pipeline),
                          [](const auto& info) {
