@@ -7,6 +7,9 @@
 //            the rows as GL stores them, for the forward blend and then the display pass
 //   shaders: glsl/composite.comp (+ include/display_transform.glsl), a compute pass
 // The pixel pack pass (passes/pixel_pack_pass.hpp) then copies the output into a read-back buffer.
+// A frame with nothing to composite (direct lighting alone, no blended surfaces) skips this pass:
+// DirectLightingPass::runToOutput writes its output, through the same
+// glsl/include/frame_output.glsl.
 #pragma once
 
 #include <array>

@@ -224,6 +224,7 @@ double BatchTransport::handOver(const BuffersFor& buffersFor, std::span<const st
     throw Error(ErrorCode::Internal, fmt::format("{}: a batch traced with the sizes of {} buffers",
                                                  layout_.logPrefix, bytes.size()));
   }
+  if (submittedTrace_ != 0) awaitResults();  // a caller that skipped it: its copies come first
   const Stopwatch cpu;
   if (mode_ == Mode::InteropSemaphores) {
     const auto [signalled, signalCount] = interopBuffers(&BatchBufferUse::signalled);
