@@ -72,9 +72,7 @@ GLenum imageFormat(OutputPixels pixels) {
 
 gl::Program buildCompositeProgram(OutputPixels pixels, bool toScene) {
   if (toScene) return gl::buildComputeProgram("composite.comp", "#define LGH_SCENE_TARGET 1\n");
-  gl::Program program = gl::buildComputeProgram("composite.comp", frameOutputDefines(pixels));
-  if (pixels == OutputPixels::Display8) uploadSrgbThresholds(program.id());
-  return program;
+  return buildFrameOutputProgram("composite.comp", "", pixels);
 }
 
 void setBackground(GLuint program, const OutputSettings& output) {
@@ -83,8 +81,6 @@ void setBackground(GLuint program, const OutputSettings& output) {
   glProgramUniform4f(program, glGetUniformLocation(program, "uBackground"), bg[0] * alpha,
                      bg[1] * alpha, bg[2] * alpha, alpha);
 }
-
-}  // namespace
 
 std::string frameOutputDefines(OutputPixels pixels) {
   switch (pixels) {
@@ -96,6 +92,16 @@ std::string frameOutputDefines(OutputPixels pixels) {
       return "#define LGH_OUTPUT_FORMAT rgba32f\n";
   }
   return "#define LGH_OUTPUT_FORMAT rgba32f\n";
+}
+
+}  // namespace
+
+gl::Program buildFrameOutputProgram(const char* computeShader, const std::string& defines,
+                                    OutputPixels pixels) {
+  gl::Program program =
+      gl::buildComputeProgram(computeShader, defines + frameOutputDefines(pixels));
+  if (pixels == OutputPixels::Display8) uploadSrgbThresholds(program.id());
+  return program;
 }
 
 void bindFrameOutput(GLuint program, const OutputSettings& output, OutputPixels pixels,

@@ -55,8 +55,11 @@ void setDisplayUniforms(GLuint program, const OutputSettings& output, int height
 // What a frame of `output` is composited to: display codes for PNG, half or float for EXR.
 OutputPixels outputPixelsFor(const OutputSettings& output);
 
-// The defines of a program that writes output(pixels) through include/frame_output.glsl.
-std::string frameOutputDefines(OutputPixels pixels);
+// A compute program of `computeShader` + `defines` that writes output(pixels) through
+// include/frame_output.glsl: the output's defines added and, for display codes, the sRGB
+// thresholds uploaded.
+gl::Program buildFrameOutputProgram(const char* computeShader, const std::string& defines,
+                                    OutputPixels pixels);
 // Binds output(pixels) to such a program's image unit and sets its uniforms: the frame's height,
 // the background, and for display codes the tone map and exposure.
 void bindFrameOutput(GLuint program, const OutputSettings& output, OutputPixels pixels,

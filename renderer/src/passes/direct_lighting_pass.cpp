@@ -21,13 +21,15 @@ void bindGBuffer(const GBufferTargets& gbuffer) {
 
 GLuint DirectLightingPass::program(const BrdfFeatures& brdf,
                                    const std::optional<OutputPixels>& finalOutput) {
-  std::string defines = brdf.defines();
-  if (finalOutput) defines += "#define LGH_FINAL_OUTPUT 1\n" + frameOutputDefines(*finalOutput);
-  auto it = programs_.find(defines);
+  ProgramKey key{brdf.defines(), finalOutput};
+  auto it = programs_.find(key);
   if (it == programs_.end()) {
-    gl::Program program = gl::buildComputeProgram("direct_lighting.comp", defines);
-    if (finalOutput == OutputPixels::Display8) uploadSrgbThresholds(program.id());
-    it = programs_.emplace(defines, std::move(program)).first;
+    gl::Program program =
+        finalOutput
+            ? buildFrameOutputProgram("direct_lighting.comp",
+                                      key.first + "#define LGH_FINAL_OUTPUT 1\n", *finalOutput)
+            : gl::buildComputeProgram("direct_lighting.comp", key.first);
+    it = programs_.emplace(std::move(key), std::move(program)).first;
   }
   return it->second.id();
 }
@@ -38,6 +40,7 @@ void DirectLightingPass::run(const DirectLightingInputs& inputs, const CameraMat
   glBindImageTexture(LGH_IMAGE_OUTPUT, targets.direct.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
                      GL_RGBA16F);
   dispatch(program, inputs, camera, targets);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 void DirectLightingPass::runToOutput(const DirectLightingInputs& inputs,
@@ -47,8 +50,9 @@ void DirectLightingPass::runToOutput(const DirectLightingInputs& inputs,
   bindFrameOutput(program, output, pixels, targets);
   dispatch(program, inputs, camera, targets);
   // Read next by the pixel pack pass or a read-back, as the composite's output is.
-  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT |
-                  GL_FRAMEBUFFER_BARRIER_BIT);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                  GL_PIXEL_BUFFER_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
+                  GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 void DirectLightingPass::dispatch(GLuint program, const DirectLightingInputs& inputs,
@@ -67,7 +71,6 @@ void DirectLightingPass::dispatch(GLuint program, const DirectLightingInputs& in
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_VISIBILITY, inputs.visibility);
   bindGBuffer(targets.gbuffer);
   glDispatchCompute(gl::groups2D(targets.width), gl::groups2D(targets.height), 1);
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 }  // namespace lgh

@@ -11,6 +11,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "gl/gl_objects.hpp"
 #include "lgh/frame_pixels.hpp"
@@ -46,7 +47,10 @@ class DirectLightingPass {
   void dispatch(GLuint program, const DirectLightingInputs& inputs, const CameraMatrices& camera,
                 FrameTargets& targets);
 
-  std::map<std::string, gl::Program> programs_;  // by BrdfFeatures::defines(), built on first use
+  // By BrdfFeatures::defines() and the output written (none: FrameTargets::direct), built on
+  // first use.
+  using ProgramKey = std::pair<std::string, std::optional<OutputPixels>>;
+  std::map<ProgramKey, gl::Program> programs_;
 };
 
 }  // namespace lgh
