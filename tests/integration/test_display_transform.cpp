@@ -224,20 +224,21 @@ TEST_F(DisplayTransform, EveryOutputLayoutReadsBackTopRowFirst) {
   }
 }
 
-// The pixel pack pass's work groups cover every word in rows within GL's group count limit: a
-// 4096 x 4096 RGBA frame (16,777,216 words, 65,536 groups) takes two rows at the guaranteed 65,535.
-TEST(PixelPackDispatch, CoversEveryWordInRowsWithinTheLimit) {
+// The pixel pack pass's work groups cover every invocation (four pixels each) in rows within GL's
+// group count limit: one group more than the guaranteed 65,535 takes two rows.
+TEST(PixelPackDispatch, CoversEveryInvocationInRowsWithinTheLimit) {
   constexpr unsigned kLimit = 65535;
   constexpr std::size_t kGroup = LGH_PACK_GROUP;
-  for (const std::size_t words :
+  for (const std::size_t invocations :
        {std::size_t{1}, kGroup, kGroup + 1, kGroup * kLimit, kGroup * kLimit + 1,
-        std::size_t{4096} * 4096, std::size_t{8192} * 8192 * 3 / 4}) {
-    const lgh::PixelPackPass::Dispatch groups = lgh::PixelPackPass::dispatchFor(words, kLimit);
-    EXPECT_LE(groups.x, kLimit) << words;
-    EXPECT_GE(std::size_t{groups.x} * groups.y * kGroup, words) << words;
-    EXPECT_LT(std::size_t{groups.x} * (groups.y - 1) * kGroup, words) << "a row of nothing";
+        std::size_t{4096} * 4096, std::size_t{16384} * 16384 / 4}) {
+    const lgh::PixelPackPass::Dispatch groups =
+        lgh::PixelPackPass::dispatchFor(invocations, kLimit);
+    EXPECT_LE(groups.x, kLimit) << invocations;
+    EXPECT_GE(std::size_t{groups.x} * groups.y * kGroup, invocations) << invocations;
+    EXPECT_LT(std::size_t{groups.x} * (groups.y - 1) * kGroup, invocations) << "a row of nothing";
   }
-  EXPECT_EQ(lgh::PixelPackPass::dispatchFor(std::size_t{4096} * 4096, kLimit).y, 2U);
+  EXPECT_EQ(lgh::PixelPackPass::dispatchFor(kGroup * kLimit + 1, kLimit).y, 2U);
   EXPECT_EQ(lgh::PixelPackPass::dispatchFor(0, kLimit).x, 0U);
 }
 

@@ -11,6 +11,7 @@ namespace lgh {
 namespace {
 
 constexpr std::size_t kWordBytes = 4;
+constexpr std::size_t kPixelsPerInvocation = 4;  // glsl/pixel_pack.comp
 
 std::size_t wordsFor(std::size_t bytes) { return (bytes + kWordBytes - 1) / kWordBytes; }
 
@@ -53,8 +54,8 @@ PixelPackPass::PixelPackPass() : program_(gl::buildComputeProgram("pixel_pack.co
   maxBlockBytes_ = static_cast<std::size_t>(std::max<GLint64>(maxBlockBytes, 0));
 }
 
-PixelPackPass::Dispatch PixelPackPass::dispatchFor(std::size_t words, unsigned maxGroupsX) {
-  const std::size_t groups = (words + LGH_PACK_GROUP - 1) / LGH_PACK_GROUP;
+PixelPackPass::Dispatch PixelPackPass::dispatchFor(std::size_t invocations, unsigned maxGroupsX) {
+  const std::size_t groups = (invocations + LGH_PACK_GROUP - 1) / LGH_PACK_GROUP;
   if (groups == 0) return {};
   const std::size_t x = std::min<std::size_t>(groups, std::max(maxGroupsX, 1U));
   return {static_cast<unsigned>(x), static_cast<unsigned>((groups + x - 1) / x)};
@@ -88,18 +89,20 @@ void PixelPackPass::run(const FrameTargets& targets, OutputPixels pixels,
 void PixelPackPass::packDisplayCodes(const FrameTargets& targets, OutputPixels pixels,
                                      const FramePixels& frame, GLuint packBuffer) {
   const std::size_t words = wordsFor(frame.size());
+  const std::size_t pixelCount = static_cast<std::size_t>(frame.width) * frame.height;
   const GLuint program = program_.id();
   glUseProgram(program);
   glProgramUniform1i(program, glGetUniformLocation(program, "uWidth"), targets.width);
   glProgramUniform1i(program, glGetUniformLocation(program, "uChannels"), frame.channels());
   glProgramUniform1ui(program, glGetUniformLocation(program, "uWordCount"),
                       static_cast<GLuint>(words));
-  glProgramUniform1ui(program, glGetUniformLocation(program, "uByteCount"),
-                      static_cast<GLuint>(frame.size()));
+  glProgramUniform1ui(program, glGetUniformLocation(program, "uPixelCount"),
+                      static_cast<GLuint>(pixelCount));
   glBindTextureUnit(0, targets.outputs[static_cast<int>(pixels)].texture.id());
   glBindBufferRange(GL_SHADER_STORAGE_BUFFER, LGH_BIND_PACKED_PIXELS, packBuffer, 0,
                     static_cast<GLsizeiptr>(words * kWordBytes));
-  const Dispatch groups = dispatchFor(words, maxGroupsX_);
+  const Dispatch groups =
+      dispatchFor((pixelCount + kPixelsPerInvocation - 1) / kPixelsPerInvocation, maxGroupsX_);
   glDispatchCompute(groups.x, groups.y, 1);
   // The buffer is mapped persistently: the CPU reads it once the frame's fence has signalled.
   glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);

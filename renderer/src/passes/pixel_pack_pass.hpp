@@ -25,14 +25,13 @@ class PixelPackPass {
   // The size of the pack buffer a frame of `pixels` needs (its bytes rounded up to whole words).
   static std::size_t bufferBytes(const FramePixels& pixels);
 
-  // The work groups that cover `words` (LGH_PACK_GROUP words each) in rows of at most
-  // `maxGroupsX`: a 4096 x 4096 RGBA frame needs 65,536 groups, one more than GL's guaranteed
-  // GL_MAX_COMPUTE_WORK_GROUP_COUNT.
+  // The work groups that cover `invocations` (LGH_PACK_GROUP each, one per four pixels) in rows
+  // of at most `maxGroupsX`: GL guarantees only 65,535 groups in a row.
   struct Dispatch {
     unsigned x = 0;
     unsigned y = 0;
   };
-  static Dispatch dispatchFor(std::size_t words, unsigned maxGroupsX);
+  static Dispatch dispatchFor(std::size_t invocations, unsigned maxGroupsX);
 
   // Issues the copy of the output into `packBuffer` (offset 0) as `layout`; returns at once: the
   // bytes are there once a fence inserted after it has signalled.
