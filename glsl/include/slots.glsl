@@ -88,7 +88,7 @@
 
 // ---- output packing (passes/pixel_pack_pass.hpp) --------------------------------------------------
 #define LGH_BIND_PACKED_PIXELS 0  // the frame's pixel-pack buffer, as uint words
-#define LGH_PACK_GROUP 64         // invocations per work group (4 pixels each)
+#define LGH_PACK_GROUP 256        // invocations per work group (a word, or four pixels, each)
 
 // ---- work groups --------------------------------------------------------------------------------
 #define LGH_GROUP_2D 8  // 8 x 8 invocations for per-pixel compute passes

@@ -7,23 +7,13 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "gl/software_rasterizer.hpp"
 #include "lightgrid/vpl_sampler.hpp"
 
 namespace lgh {
 namespace {
 
 constexpr const char* kProbePass = "lgh path probe";
-
-bool softwareRasterizer() {
-  const auto* text = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  std::string renderer = text != nullptr ? text : "";
-  std::transform(renderer.begin(), renderer.end(), renderer.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  for (const char* name : {"llvmpipe", "softpipe", "swrast", "lavapipe", "swiftshader"}) {
-    if (renderer.find(name) != std::string::npos) return true;
-  }
-  return false;
-}
 
 // The level table through a staging copy (see readShadowSamples).
 LghLevelTable readLevelTable(GLuint levels) {
@@ -144,7 +134,7 @@ LightingPath LghFrameLighting::choosePath(LightingPath requested, const LghLight
     report.decide("lgh_lighting_choice", "configured");
     return requested;
   }
-  if (softwareRasterizer()) {
+  if (gl::softwareRasterizer()) {
     report.decide("lgh_lighting_choice", "rule");  // no meaningful GPU timers on llvmpipe
     return LightingPath::Compute;
   }

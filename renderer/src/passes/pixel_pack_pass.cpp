@@ -6,12 +6,13 @@
 
 #include "gl/shader_library.hpp"
 #include "gl/slots.hpp"
+#include "gl/software_rasterizer.hpp"
 
 namespace lgh {
 namespace {
 
 constexpr std::size_t kWordBytes = 4;
-constexpr std::size_t kPixelsPerInvocation = 4;  // glsl/pixel_pack.comp
+constexpr std::size_t kPixelsPerInvocation = 4;  // LGH_PACK_FOUR_PIXELS in glsl/pixel_pack.comp
 
 std::size_t wordsFor(std::size_t bytes) { return (bytes + kWordBytes - 1) / kWordBytes; }
 
@@ -45,7 +46,10 @@ void copyByDriver(const FrameTargets& targets, OutputPixels pixels, const FrameP
 
 }  // namespace
 
-PixelPackPass::PixelPackPass() : program_(gl::buildComputeProgram("pixel_pack.comp")) {
+PixelPackPass::PixelPackPass()
+    : fourPixelsPerInvocation_(gl::softwareRasterizer()),
+      program_(gl::buildComputeProgram(
+          "pixel_pack.comp", fourPixelsPerInvocation_ ? "#define LGH_PACK_FOUR_PIXELS 1\n" : "")) {
   GLint maxGroupsX = 65535;
   glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &maxGroupsX);
   maxGroupsX_ = static_cast<unsigned>(std::max(maxGroupsX, 1));
@@ -101,8 +105,10 @@ void PixelPackPass::packDisplayCodes(const FrameTargets& targets, OutputPixels p
   glBindTextureUnit(0, targets.outputs[static_cast<int>(pixels)].texture.id());
   glBindBufferRange(GL_SHADER_STORAGE_BUFFER, LGH_BIND_PACKED_PIXELS, packBuffer, 0,
                     static_cast<GLsizeiptr>(words * kWordBytes));
-  const Dispatch groups =
-      dispatchFor((pixelCount + kPixelsPerInvocation - 1) / kPixelsPerInvocation, maxGroupsX_);
+  const std::size_t invocations =
+      fourPixelsPerInvocation_ ? (pixelCount + kPixelsPerInvocation - 1) / kPixelsPerInvocation
+                               : words;
+  const Dispatch groups = dispatchFor(invocations, maxGroupsX_);
   glDispatchCompute(groups.x, groups.y, 1);
   // The buffer is mapped persistently: the CPU reads it once the frame's fence has signalled.
   glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);

@@ -1,7 +1,8 @@
 // Pixel pack pass: the last GPU step of a frame, behind its fence.
 //   inputs:  FrameTargets::output(pixels), rows already in the image's order
 //   outputs: the frame's pixel-pack buffer (gl/readback_buffers.hpp) holding FramePixels of
-//            `layout`: display codes packed 3 or 4 bytes per pixel by glsl/pixel_pack.comp (by
+//            `layout`: display codes packed 3 or 4 bytes per pixel by glsl/pixel_pack.comp, a
+//            word per invocation on a GPU and four pixels per invocation on a CPU rasterizer (by
 //            glGetTextureImage for a frame larger than the driver's shader storage block), or
 //            half / float linear light copied by glGetTextureImage (the target's own format)
 //   shaders: glsl/pixel_pack.comp
@@ -25,8 +26,8 @@ class PixelPackPass {
   // The size of the pack buffer a frame of `pixels` needs (its bytes rounded up to whole words).
   static std::size_t bufferBytes(const FramePixels& pixels);
 
-  // The work groups that cover `invocations` (LGH_PACK_GROUP each, one per four pixels) in rows
-  // of at most `maxGroupsX`: GL guarantees only 65,535 groups in a row.
+  // The work groups that cover `invocations` (LGH_PACK_GROUP each: a word, or four pixels, each)
+  // in rows of at most `maxGroupsX`: GL guarantees only 65,535 groups in a row.
   struct Dispatch {
     unsigned x = 0;
     unsigned y = 0;
@@ -42,6 +43,7 @@ class PixelPackPass {
   void packDisplayCodes(const FrameTargets& targets, OutputPixels pixels, const FramePixels& frame,
                         GLuint packBuffer);
 
+  bool fourPixelsPerInvocation_;  // LGH_PACK_FOUR_PIXELS: on a CPU rasterizer
   gl::Program program_;
   unsigned maxGroupsX_ = 65535;
   std::size_t maxBlockBytes_ = std::size_t{1} << 27;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
