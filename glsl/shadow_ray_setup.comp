@@ -83,6 +83,19 @@ vec3 inFrontOf(vec3 target, vec3 surface, vec3 normal) {
   return behind < 0.0 ? target - 2.0 * behind * normal : target;
 }
 
+// Whether light `l` can light the surface directly at all as the direct lighting pass evaluates
+// it (include/light_terms.glsl, include/brdf.glsl): not outside its range or cone, nor on an unlit
+// surface, nor from behind the surface unless the surface transmits. Where it cannot, that pass
+// never reads the rays' bits, so none is traced. The margin keeps a ray where the pass, another
+// program, might round the same dot product to the other side of 0.
+bool directLightReaches(Light l, SurfacePoint s) {
+  if (s.model == MATERIAL_MODEL_UNLIT) return false;
+  vec3 toLight;
+  if (!(lightFalloff(l, s.position, toLight) > 0.0)) return false;
+  bool mayTransmit = !isClassicModel(s.model) && (s.layers & MATERIAL_LAYER_TRANSMISSION) != 0u;
+  return mayTransmit || dot(s.normal, toLight) > -1e-4;
+}
+
 vec4 directTarget(int light, int sampleIndex, vec3 origin, uint pixelSeed) {
   Light l = lights[light];
   int type = int(l.positionType.w + 0.5);
@@ -114,8 +127,10 @@ void main() {
   uint pixelSeed = reservoirPixelSeed(uSeed, pixelIndex);
   int ray = 0;
   for (int light = 0; light < uShadowedLights; ++light) {
+    bool reaches = directLightReaches(lights[light], s);
     for (int sampleIndex = 0; sampleIndex < uLightSamples; ++sampleIndex) {
-      targets[firstTarget + uint(ray++)] = directTarget(light, sampleIndex, origin, pixelSeed);
+      targets[firstTarget + uint(ray++)] =
+          reaches ? directTarget(light, sampleIndex, origin, pixelSeed) : NO_RAY;
     }
   }
   for (int k = 0; k < uLghSampleCount; ++k) {

@@ -1,0 +1,137 @@
+// The shadow ray setup pass (glsl/shadow_ray_setup.comp) on a G-buffer written by hand, on
+// llvmpipe: a pixel gets a ray for a direct light only where the direct lighting pass will read
+// its bit, that is where the light can light the surface at all (include/light_terms.glsl):
+//  - a surface facing the light gets a ray, one facing away gets none, unless it transmits light
+//    (KHR_materials_transmission: lit from behind);
+//  - an unlit surface, a pixel outside a point light's range and the background get none;
+//  - a classic model facing away gets none, whatever its flags byte says (not layer bits there).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "context/gl_context.hpp"
+#include "gl/gl_objects.hpp"
+#include "passes/frame_targets.hpp"
+#include "passes/light_buffer.hpp"
+#include "passes/shadow_ray_setup_pass.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+// One pixel of the hand-written G-buffer.
+struct Surface {
+  bool drawn = true;
+  glm::vec3 position{0.0F};
+  glm::vec3 normal{0.0F, 0.0F, 1.0F};
+  unsigned model = 0;  // MATERIAL_MODEL_* (glsl/include/material_models.glsl)
+  unsigned flags = 0;  // layer bits (metallic-roughness) or MATERIAL_CLASSIC_* flags
+};
+
+constexpr unsigned kMetallicRoughness = 0;
+constexpr unsigned kUnlit = 1;
+constexpr unsigned kPhong = 2;
+constexpr unsigned kTransmission = 8;  // MATERIAL_LAYER_TRANSMISSION
+
+class ShadowRaySetup : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { context = lgh::GlContext::create(lgh::test::rendererOptions()); }
+  static void TearDownTestSuite() { context.reset(); }
+
+  // The targets the pass writes for `surfaces` (one row of pixels) and `lights`, every light
+  // shadowed with one ray: per pixel, per light, whether it got a ray (target w >= 0).
+  static std::vector<std::vector<bool>> rays(const std::vector<Surface>& surfaces,
+                                             const std::vector<lgh::LightDesc>& lights) {
+    lgh::FrameTargets frame;
+    const int width = static_cast<int>(surfaces.size());
+    frame.resize(width, 1);
+    std::vector<glm::vec4> positions;
+    std::vector<glm::vec4> normals;
+    std::vector<std::array<std::uint8_t, 4>> materials;
+    for (const Surface& s : surfaces) {
+      positions.emplace_back(s.position, s.drawn ? 1.0F : 0.0F);
+      normals.emplace_back(s.normal, 0.0F);
+      materials.push_back(
+          {0, 128, static_cast<std::uint8_t>(s.model), static_cast<std::uint8_t>(s.flags)});
+    }
+    glTextureSubImage2D(frame.gbuffer.position.id(), 0, 0, 0, width, 1, GL_RGBA, GL_FLOAT,
+                        positions.data());
+    glTextureSubImage2D(frame.gbuffer.normal.id(), 0, 0, 0, width, 1, GL_RGBA, GL_FLOAT,
+                        normals.data());
+    glTextureSubImage2D(frame.gbuffer.material.id(), 0, 0, 0, width, 1, GL_RGBA, GL_UNSIGNED_BYTE,
+                        materials.data());
+
+    lgh::gl::SizedBuffer lightBuffer;
+    lgh::uploadLights(lights, lightBuffer);
+    const auto rayCount = static_cast<GLsizeiptr>(surfaces.size() * lights.size());
+    lgh::gl::Buffer origins;
+    lgh::gl::Buffer targets;
+    glNamedBufferStorage(origins.id(), width * static_cast<GLsizeiptr>(sizeof(glm::vec4)), nullptr,
+                         0);
+    glNamedBufferStorage(targets.id(), rayCount * static_cast<GLsizeiptr>(sizeof(glm::vec4)),
+                         nullptr, 0);
+    lgh::ShadowRaySetupInputs inputs;
+    inputs.layout.shadowedLights = static_cast<int>(lights.size());
+    inputs.lights = lightBuffer.id();
+    inputs.surfaceOffset = 1e-3F;
+    lgh::ShadowRaySetupPass pass;
+    pass.run(inputs, frame, origins.id(), targets.id());
+    std::vector<glm::vec4> written(static_cast<std::size_t>(rayCount));
+    glGetNamedBufferSubData(targets.id(), 0, rayCount * static_cast<GLsizeiptr>(sizeof(glm::vec4)),
+                            written.data());
+    std::vector<std::vector<bool>> result(surfaces.size(), std::vector<bool>(lights.size()));
+    for (std::size_t p = 0; p < surfaces.size(); ++p) {
+      for (std::size_t l = 0; l < lights.size(); ++l) {
+        result[p][l] = written[p * lights.size() + l].w >= 0.0F;
+      }
+    }
+    return result;
+  }
+
+  static inline std::unique_ptr<lgh::GlContext> context;
+};
+
+lgh::LightDesc sunFromAbove() {  // lights surfaces whose normal has +z
+  lgh::LightDesc light;
+  light.type = lgh::LightType::Directional;
+  light.direction = {0.0F, 0.0F, -1.0F};
+  return light;
+}
+
+TEST_F(ShadowRaySetup, RaysGoOnlyWhereTheLightCanLightTheSurface) {
+  const glm::vec3 down(0.0F, 0.0F, -1.0F);
+  const std::vector<Surface> surfaces = {
+      {},                                                         // facing the light
+      {.normal = down},                                           // facing away
+      {.normal = down, .flags = kTransmission},                   // facing away, transmits
+      {.normal = glm::normalize(glm::vec3(1.0F, 0.0F, 1e-6F))},   // grazing, a hair towards it
+      {.model = kUnlit},                                          // unlit
+      {.normal = down, .model = kPhong, .flags = kTransmission},  // classic, flags not layers
+      {.drawn = false},                                           // background
+  };
+  const std::vector<std::vector<bool>> got = rays(surfaces, {sunFromAbove()});
+  const std::vector<bool> expected = {true, false, true, true, false, false, false};
+  ASSERT_EQ(got.size(), expected.size());
+  for (std::size_t p = 0; p < expected.size(); ++p) EXPECT_EQ(got[p][0], expected[p]) << p;
+}
+
+TEST_F(ShadowRaySetup, APointLightGivesNoRaysBeyondItsRange) {
+  lgh::LightDesc bulb;
+  bulb.type = lgh::LightType::Point;
+  bulb.position = {0.0F, 0.0F, 1.0F};
+  bulb.range = 2.0F;
+  const std::vector<Surface> surfaces = {
+      {.position = {0.0F, 0.0F, 0.0F}},  // 1 away
+      {.position = {5.0F, 0.0F, 0.0F}},  // beyond the range
+  };
+  const std::vector<std::vector<bool>> got = rays(surfaces, {bulb, sunFromAbove()});
+  EXPECT_TRUE(got[0][0]);
+  EXPECT_FALSE(got[1][0]);
+  EXPECT_TRUE(got[0][1]);  // the sun reaches both
+  EXPECT_TRUE(got[1][1]);
+}
+
+}  // namespace
