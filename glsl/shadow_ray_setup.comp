@@ -1,8 +1,9 @@
 #version 450 core
 // Shadow ray setup: one invocation per pixel writes the pixel's ray origin (its G-buffer position
 // moved off the surface along the normal) and its targets: uLightSamples points (or directions)
-// on each shadowed direct light, jittered over the light's radius for soft shadows, then the
-// LGH's k shadow samples (already jittered by the grid light's variance, Sec. 3.3).
+// on each shadowed direct light, jittered over the light's radius for soft shadows (none where
+// the light cannot light the surface: directLightReaches), then the LGH's k shadow samples
+// (already jittered by the grid light's variance, Sec. 3.3).
 // With LGH_POINT_LIGHT_RAYS (the shadowed brute-force reference): one ray to each of
 // uRaysPerPixel point lights of the PointLight SSBO from uFirstLight on, at their exact positions.
 // Inputs: G-buffer position and normal, lights SSBO, LGH samples. Outputs: origins, targets.
