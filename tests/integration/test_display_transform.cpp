@@ -224,8 +224,8 @@ TEST_F(DisplayTransform, EveryOutputLayoutReadsBackTopRowFirst) {
   }
 }
 
-// The pixel pack pass's work groups cover every invocation (four pixels each) in rows within GL's
-// group count limit: one group more than the guaranteed 65,535 takes two rows.
+// The pixel pack pass's work groups cover every invocation (a word, or four pixels, each) in rows
+// within GL's group count limit: one group more than the guaranteed 65,535 takes two rows.
 TEST(PixelPackDispatch, CoversEveryInvocationInRowsWithinTheLimit) {
   constexpr unsigned kLimit = 65535;
   constexpr std::size_t kGroup = LGH_PACK_GROUP;
