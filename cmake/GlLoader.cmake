@@ -14,7 +14,7 @@ set(LGH_GL_EXTENSIONS
     GL_EXT_memory_object GL_EXT_memory_object_fd GL_EXT_semaphore GL_EXT_semaphore_fd
     GL_EXT_texture_filter_anisotropic GL_ARB_texture_filter_anisotropic GL_NVX_gpu_memory_info
     GL_KHR_robustness GL_ARB_robustness GL_EXT_texture_compression_s3tc
-    GL_KHR_parallel_shader_compile GL_KHR_debug)
+    GL_KHR_parallel_shader_compile GL_KHR_debug GL_AMD_pinned_memory)
 set(LGH_EGL_EXTENSIONS
     EGL_EXT_device_base EGL_EXT_device_enumeration EGL_EXT_device_query EGL_EXT_platform_base
     EGL_EXT_platform_device EGL_MESA_platform_surfaceless EGL_KHR_surfaceless_context

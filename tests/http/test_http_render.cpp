@@ -223,7 +223,7 @@ TEST_F(RenderTest, InfoHealthAndReady) {
   EXPECT_EQ(shadows.at("status"), "ready") << shadows.dump();
   EXPECT_EQ(shadows.at("process"), "in-process");
   EXPECT_FALSE(shadows.at("device").get<std::string>().empty());
-  EXPECT_EQ(shadows.at("transport"), "staging") << "llvmpipe cannot use lavapipe's memory";
+  EXPECT_EQ(shadows.at("transport"), "pinned") << "llvmpipe pins lavapipe's memory, not imports it";
   EXPECT_TRUE(body["build"].contains("version"));
   EXPECT_EQ(http->Get("/healthz")->status, 200);
   EXPECT_EQ(http->Get("/readyz")->status, 200);

@@ -290,10 +290,11 @@ TEST_F(GlobalIllumination, BothTracingPathsGiveTheSameVpls) {
   const Frame pipelineFrame = renderDemo(gi, "pipeline");
   EXPECT_EQ(query.report.decisions.at("gi_tracing"), "ray-query");
   EXPECT_EQ(pipelineFrame.report.decisions.at("gi_tracing"), "pipeline");
-  // The closest-hit batches go through staging copies (shadows/batch_transport.hpp): llvmpipe
-  // cannot use lavapipe's memory, so interop is tried, refused and logged first.
-  EXPECT_EQ(query.report.decisions.at("gi_transport"), "staging");
-  EXPECT_EQ(pipelineFrame.report.decisions.at("gi_transport"), "staging");
+  // The closest-hit batches go through lavapipe's memory pinned into GL
+  // (shadows/batch_transport.hpp): llvmpipe cannot import lavapipe's memory, so interop is tried,
+  // refused and logged first.
+  EXPECT_EQ(query.report.decisions.at("gi_transport"), "pinned");
+  EXPECT_EQ(pipelineFrame.report.decisions.at("gi_transport"), "pinned");
   EXPECT_TRUE(sameVpls(query, pipelineFrame));
   EXPECT_GT(litVpls(query), 3000U);
 }

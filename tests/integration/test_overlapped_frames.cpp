@@ -127,6 +127,32 @@ TEST(OverlappedFrames, SplitFramesGiveThePixelsOfWholeFrames) {
   }
 }
 
+// Split frames whose rays go through staging copies (LGH_NO_PINNED_MEMORY; shadows/
+// batch_transport.hpp: copied over, traced while GL draws on, copied back before the direct
+// lighting) give the pixels of split frames whose rays stay in lavapipe's memory pinned into GL.
+// Each test runs in a process of its own (ctest): the variable stays here.
+TEST(OverlappedFrames, StagingSplitFramesGiveThePixelsOfPinnedOnes) {
+  const std::vector<json> frames = mixedSequence();
+  lgh::Renderer pinned(options(true));
+  const std::vector<lgh::RenderResult> viaPinned = submitAll(pinned, frames);
+  setenv("LGH_NO_PINNED_MEMORY", "1", 1);
+  lgh::Renderer staging(options(true));
+  const std::vector<lgh::RenderResult> viaStaging = submitAll(staging, frames);
+  unsetenv("LGH_NO_PINNED_MEMORY");
+  ASSERT_EQ(viaPinned.size(), frames.size());
+  ASSERT_EQ(viaStaging.size(), frames.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    SCOPED_TRACE("frame " + std::to_string(i) + ": " + frames[i]["output"].dump());
+    if (frames[i]["settings"]["shadows"] != "on") continue;
+    EXPECT_EQ(viaPinned[i].decisions.at("shadow_transport"), "pinned");
+    EXPECT_EQ(viaStaging[i].decisions.at("shadow_transport"), "staging");
+    EXPECT_EQ(viaPinned[i].decisions.at("frame_overlap"),
+              viaStaging[i].decisions.at("frame_overlap"));
+    if (frames[i]["settings"].contains("lgh")) continue;  // float atomics: last bits vary
+    EXPECT_EQ(pixelBytes(viaPinned[i]), pixelBytes(viaStaging[i]));
+  }
+}
+
 TEST(OverlappedFrames, ASplitFrameLeftAloneIsFinishedByPolling) {
   lgh::Renderer renderer(options(true));
   renderer.submit(lgh::parseRenderRequest(box(32, 32)));

@@ -105,10 +105,10 @@ TEST_F(Shadows, BothTracingPathsRenderTheSameImage) {
   const Frame pipeline = render(request);
   EXPECT_EQ(rayQuery.decisions.at("shadows"), "ray-query");
   EXPECT_EQ(pipeline.decisions.at("shadows"), "pipeline");
-  // The rays go through staging copies (shadows/batch_transport.hpp): llvmpipe cannot use
-  // lavapipe's memory, so interop is tried, refused and logged first.
-  EXPECT_EQ(rayQuery.decisions.at("shadow_transport"), "staging");
-  EXPECT_EQ(pipeline.decisions.at("shadow_transport"), "staging");
+  // The rays go through lavapipe's memory pinned into GL (shadows/batch_transport.hpp): llvmpipe
+  // cannot import lavapipe's memory, so interop is tried, refused and logged first.
+  EXPECT_EQ(rayQuery.decisions.at("shadow_transport"), "pinned");
+  EXPECT_EQ(pipeline.decisions.at("shadow_transport"), "pinned");
   // The LGH's float atomics vary in the last bits from run to run (test_context_paths.cpp).
   ASSERT_EQ(rayQuery.image.rgba.size(), pipeline.image.rgba.size());
   double largest = 0.0;
@@ -219,6 +219,27 @@ TEST_F(Shadows, StructuresBuiltAheadTraceAsThoseBuiltWhenDrawn) {
   const lgh::FloatImage a = builtWhenDrawn.pixels.toFloatImage();
   const lgh::FloatImage b = builtAhead.pixels.toFloatImage();
   EXPECT_EQ(a.rgba, b.rgba);
+}
+
+// The hand-over modes where GL cannot import Vulkan's memory (shadows/batch_transport.hpp):
+// lavapipe's memory pinned into GL, and the staging copies that LGH_NO_PINNED_MEMORY asks for (as
+// a driver without GL_AMD_pinned_memory gets them) give the same image, with the occluder's
+// shadow in it. Each test runs in a process of its own (ctest): the variable stays here.
+TEST_F(Shadows, PinnedAndStagingHandOversGiveTheSameImage) {
+  const lgh::RenderRequest occluder = lgh::parseRenderRequest(occluderRequest("on"));
+  lgh::Renderer pinned(options());
+  const lgh::RenderResult a = pinned.render(occluder);
+  setenv("LGH_NO_PINNED_MEMORY", "1", 1);
+  lgh::Renderer staging(options());
+  const lgh::RenderResult b = staging.render(occluder);
+  unsetenv("LGH_NO_PINNED_MEMORY");
+  EXPECT_EQ(a.decisions.at("shadow_transport"), "pinned");
+  EXPECT_EQ(b.decisions.at("shadow_transport"), "staging");
+  const lgh::FloatImage imageA = a.pixels.toFloatImage();
+  const lgh::FloatImage imageB = b.pixels.toFloatImage();
+  EXPECT_EQ(imageA.rgba, imageB.rgba);
+  EXPECT_EQ(luminance(imageA, 64 + static_cast<int>(0.37F * 64.0F), 64), 0.0F) << "shadowed";
+  EXPECT_GT(luminance(imageA, 64 + static_cast<int>(0.45F * 64.0F), 64), 0.0F) << "lit";
 }
 
 // Each test runs in a process of its own (ctest): the Vulkan loader here finds no driver.

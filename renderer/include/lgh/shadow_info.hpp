@@ -19,7 +19,8 @@ struct ShadowInfo {
   bool rayTracingPipeline = false;
   bool externalMemory = false;
   bool externalSemaphores = false;
-  // How rays reach Vulkan: "interop", "interop-finish" or "staging"; empty before the first batch.
+  // How rays reach Vulkan: "interop", "interop-finish", "pinned" or "staging"; empty before the
+  // first batch.
   std::string transport;
   nlohmann::json toJson() const;
 };

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <cstdlib>
+#include <string_view>
 #include <utility>
 
 #include <fmt/format.h>
@@ -70,6 +72,30 @@ bool glHasSemaphoreInterop() {
   return api.EXT_semaphore != 0 && api.EXT_semaphore_fd != 0;
 }
 
+// LGH_NO_PINNED_MEMORY set (and not "0"): staging copies instead of pinned memory.
+bool pinningSwitchedOff() {
+  const char* value = std::getenv("LGH_NO_PINNED_MEMORY");
+  return value != nullptr && *value != '\0' && std::string_view(value) != "0";
+}
+
+// A GL buffer on `shared`'s mapped memory (GL_AMD_pinned_memory): GL reads and writes that memory
+// itself, and does not keep it alive.
+bool pinBuffer(const vk::SharedBuffer& shared, gl::Buffer& buffer, std::string& failure) {
+  clearGlErrors();
+  buffer = gl::Buffer();
+  glBindBuffer(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, buffer.id());
+  glBufferData(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, static_cast<GLsizeiptr>(shared.size),
+               shared.mapped, GL_STREAM_COPY);
+  glBindBuffer(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, 0);
+  if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
+    buffer = gl::Buffer::empty();
+    failure =
+        fmt::format("glBufferData(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD): GL error 0x{:x}", error);
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 BatchTransport::BatchTransport(vk::ShadowTracer& tracer, BatchLayout layout)
@@ -77,6 +103,8 @@ BatchTransport::BatchTransport(vk::ShadowTracer& tracer, BatchLayout layout)
       layout_(std::move(layout)),
       imported_(layout_.buffers.size()),
       staging_(layout_.buffers.size()) {
+  pinned_.reserve(layout_.buffers.size());
+  for (std::size_t i = 0; i < layout_.buffers.size(); ++i) pinned_.push_back(gl::Buffer::empty());
   if (layout_.buffers.empty() || layout_.buffers.size() > kMaxBatchBuffers ||
       !layout_.exportSemaphores) {
     throw Error(ErrorCode::Internal, fmt::format("{}: a batch transport of {} buffers",
@@ -91,6 +119,8 @@ std::string BatchTransport::name() const {
       return "interop";
     case Mode::InteropFinish:
       return "interop-finish";
+    case Mode::Pinned:
+      return "pinned";
     case Mode::Staging:
       return "staging";
     case Mode::Undecided:
@@ -116,9 +146,45 @@ void BatchTransport::decide(const BuffersFor& buffersFor) {
   } else {
     why = "GL could not use the Vulkan memory";
   }
+  const std::string notPinned = tryPinning(buffersFor(vk::Transport::Staging));
+  if (notPinned.empty()) {
+    mode_ = Mode::Pinned;
+    spdlog::info(
+        "{}: {} handed over in Vulkan's mapped memory, pinned into GL "
+        "(GL_AMD_pinned_memory): {}",
+        layout_.logPrefix, layout_.batches, why);
+    return;
+  }
   mode_ = Mode::Staging;
-  spdlog::info("{}: {} handed over through staging copies: {}", layout_.logPrefix, layout_.batches,
-               why);
+  spdlog::info("{}: {} handed over through staging copies: {}; {}", layout_.logPrefix,
+               layout_.batches, why, notPinned);
+}
+
+std::string BatchTransport::tryPinning(const BatchBuffers& buffers) {
+  if (pinningSwitchedOff()) return "pinned memory switched off (LGH_NO_PINNED_MEMORY)";
+  if (gl::api("GL_AMD_pinned_memory").AMD_pinned_memory == 0) {
+    return "the GL context has no GL_AMD_pinned_memory";
+  }
+  if (!pinAll(buffers)) return "GL could not pin the Vulkan memory";
+  generation_ = buffers.generation;
+  haveBuffers_ = true;
+  return {};
+}
+
+bool BatchTransport::pinAll(const BatchBuffers& buffers) {
+  const QuietGlDebugOutput quiet;
+  std::string failure;
+  for (std::size_t i = 0; i < pinned_.size(); ++i) {
+    if (buffers.parts[i]->mapped == nullptr) {
+      failure = "the Vulkan memory is not mapped";
+    } else if (pinBuffer(*buffers.parts[i], pinned_[i], failure)) {
+      continue;
+    }
+    spdlog::info("{}: pinning the {} into GL failed: {}", layout_.logPrefix, layout_.bufferNames,
+                 failure);
+    return false;
+  }
+  return true;
 }
 
 bool BatchTransport::importAll(const BatchBuffers& buffers) {
@@ -162,6 +228,22 @@ bool BatchTransport::importSemaphores() {
 std::span<const GLuint> BatchTransport::prepare(const BuffersFor& buffersFor) {
   decide(buffersFor);
   const std::size_t count = layout_.buffers.size();
+  if (mode_ == Mode::Pinned) {
+    // GL does not keep pinned memory alive: nothing of GL's may still use it when Vulkan grows
+    // the buffers below (on a CPU rasterizer the batch's passes wait for the same work anyway).
+    glFinish();
+    const BatchBuffers buffers = buffersFor(vk::Transport::Staging);
+    if (!haveBuffers_ || buffers.generation != generation_) {
+      if (!pinAll(buffers)) {
+        throw Error(ErrorCode::Internal, fmt::format("{}: GL could not pin the grown {}",
+                                                     layout_.logPrefix, layout_.bufferNames));
+      }
+      generation_ = buffers.generation;
+      haveBuffers_ = true;
+    }
+    for (std::size_t i = 0; i < count; ++i) ids_[i] = pinned_[i].id();
+    return {ids_.data(), count};
+  }
   if (mode_ == Mode::Staging) {
     const BatchBuffers buffers = buffersFor(vk::Transport::Staging);
     for (std::size_t i = 0; i < count; ++i) {
@@ -236,6 +318,18 @@ double BatchTransport::handOver(const BuffersFor& buffersFor, std::span<const st
   if (mode_ == Mode::InteropFinish) {
     glFinish();
     traceOnVulkan(false);
+    return cpu.elapsedMs();
+  }
+  if (mode_ == Mode::Pinned) {
+    // GL's writes are in the memory Vulkan reads once GL has finished; Vulkan's results are where
+    // GL reads them once the trace's fence has signalled (awaitResults, or traceOnVulkan).
+    glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+    glFinish();
+    if (submitOnVulkan) {
+      submittedTrace_ = submitOnVulkan();
+    } else {
+      traceOnVulkan(false);
+    }
     return cpu.elapsedMs();
   }
   const BatchBuffers buffers = buffersFor(vk::Transport::Staging);

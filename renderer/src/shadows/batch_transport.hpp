@@ -2,10 +2,15 @@
 //   interop   the Vulkan memory imported into GL buffers (GL_EXT_memory_object_fd): the batch
 //             never leaves the GPU. Synchronized with imported semaphores (GL_EXT_semaphore_fd)
 //             where both sides have them, else with glFinish and a fence.
+//   pinned    where GL cannot import Vulkan's memory but can make a buffer on client memory
+//             (GL_AMD_pinned_memory; Mesa's llvmpipe with lavapipe): GL buffers made on Vulkan's
+//             mapped host memory, so GL writes the batch where Vulkan reads it and reads what
+//             Vulkan wrote where it wrote it, with no copy. Synchronized with glFinish and a fence.
 //   staging   GL buffers of its own, copied into and out of Vulkan's mapped host memory, where the
-//             drivers cannot share memory (Mesa: llvmpipe cannot back a buffer with lavapipe
-//             memory) - so CI still runs every step of the frame.
-// The transport is chosen once, on the first batch, by trying interop; the choice is logged.
+//             drivers share no memory at all, or with LGH_NO_PINNED_MEMORY set (which keeps this
+//             mode tested where pinning works).
+// The transport is chosen once, on the first batch, by trying interop, then pinning; the choice
+// is logged.
 // One kind of batch differs from another only in its buffers and its words in the log
 // (BatchLayout): shadow rays (shadows/ray_batch_transport.hpp) and closest hits
 // (gi/hit_batch_transport.hpp) are this transport with their layouts.
@@ -88,11 +93,11 @@ class BatchTransport {
   // other transports have nothing left to do. Once per handOver().
   void awaitResults();
 
-  // "interop" (semaphores), "interop-finish" or "staging".
+  // "interop" (semaphores), "interop-finish", "pinned" or "staging".
   std::string name() const;
 
  private:
-  enum class Mode { Undecided, InteropSemaphores, InteropFinish, Staging };
+  enum class Mode { Undecided, InteropSemaphores, InteropFinish, Pinned, Staging };
   struct Imported {
     gl::MemoryObject memory = gl::MemoryObject::empty();
     gl::Buffer buffer = gl::Buffer::empty();
@@ -100,6 +105,9 @@ class BatchTransport {
 
   void decide(const BuffersFor& buffersFor);
   bool importAll(const BatchBuffers& buffers);
+  // Why the batch cannot go through pinned memory, or "" when pinAll(buffers) succeeded.
+  std::string tryPinning(const BatchBuffers& buffers);
+  bool pinAll(const BatchBuffers& buffers);
   bool importSemaphores();
   // The interop GL buffers whose use says `named` (signalled or waited), and how many.
   std::pair<std::array<GLuint, kMaxBatchBuffers>, GLuint> interopBuffers(
@@ -111,6 +119,7 @@ class BatchTransport {
   std::uint64_t generation_ = 0;
   bool haveBuffers_ = false;
   std::vector<Imported> imported_;
+  std::vector<gl::Buffer> pinned_;  // on Vulkan's mapped memory, which GL does not keep alive
   std::vector<gl::SizedBuffer> staging_;
   std::array<GLuint, kMaxBatchBuffers> ids_{};
   gl::Semaphore glDone_ = gl::Semaphore::empty();
