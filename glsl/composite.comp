@@ -10,7 +10,9 @@
 //   LGH_SCENE_TARGET    frames with blended surfaces: linear light into the scene target, rows as
 //                       GL stores them (the display pass turns them over after the forward blend)
 // Output: image unit LGH_IMAGE_OUTPUT.
+// Invocation groups of background pixels only store the background (include/skip_background.glsl).
 
+#include "include/skip_background.glsl"
 #include "include/slots.glsl"
 #ifdef LGH_SCENE_TARGET
 layout(binding = LGH_IMAGE_OUTPUT, rgba32f) writeonly uniform image2D uScene;
@@ -31,8 +33,8 @@ uniform int uWidth;
 
 layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
 
+// Where geometry was drawn.
 vec4 linearColor(ivec2 pixel) {
-  if (texelFetch(uCoverage, pixel, 0).w < 0.5) return uBackground;
   vec3 color = texelFetch(uDirect, pixel, 0).rgb;
   if (uHasIndirect) {
     float ratio = uHasShadowRatio ? texelFetch(uShadowRatio, pixel, 0).r : 1.0;
@@ -43,10 +45,20 @@ vec4 linearColor(ivec2 pixel) {
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (pixel.x >= uWidth || pixel.y >= uHeight) return;
+  bool inFrame = pixel.x < uWidth && pixel.y < uHeight;
+  bool covered = inFrame && texelFetch(uCoverage, pixel, 0).w >= 0.5;
 #ifdef LGH_SCENE_TARGET
-  imageStore(uScene, pixel, linearColor(pixel));
+  if (inFrame) imageStore(uScene, pixel, covered ? linearColor(pixel) : uBackground);
 #else
-  storeOutput(outputTarget(pixel), linearColor(pixel));
+  if (!anyInvocationCovers(covered)) {
+    if (inFrame) storeBackground(outputTarget(pixel));
+    return;
+  }
+  if (!inFrame) return;
+  if (covered) {
+    storeOutput(outputTarget(pixel), linearColor(pixel));
+  } else {
+    storeBackground(outputTarget(pixel));
+  }
 #endif
 }

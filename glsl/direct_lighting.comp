@@ -16,7 +16,9 @@
 // A compute pass, not a fullscreen triangle: on GPUs with few graphics units (Hopper) a fragment
 // pass runs on a small part of the chip. Compiled for the frame's material models and layers
 // (LGH_BRDF_MODELS / LGH_BRDF_LAYERS of include/brdf.glsl), as the LGH kernels are.
+// Invocation groups of background pixels only store the background (include/skip_background.glsl).
 
+#include "include/skip_background.glsl"
 #define LGH_READ_VISIBILITY
 #define LGH_LIGHTS_BUFFER
 #include "include/gbuffer.glsl"
@@ -70,15 +72,26 @@ vec4 directRadiance(ivec2 pixel) {
   return vec4(radiance, 1.0);
 }
 
-void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (pixel.x >= uFrameWidth || pixel.y >= uFrameHeight) return;
-  vec4 radiance = directRadiance(pixel);
+void storeRadiance(ivec2 pixel, vec4 radiance) {
 #ifdef LGH_FINAL_OUTPUT
   // Full float: the composite reads the radiance rounded to half floats, so a code may differ
   // by one step from a composited frame's.
-  storeOutput(outputTarget(pixel), radiance.a > 0.5 ? radiance : uBackground);
+  if (radiance.a > 0.5) {
+    storeOutput(outputTarget(pixel), radiance);
+  } else {
+    storeBackground(outputTarget(pixel));
+  }
 #else
   imageStore(uRadiance, pixel, radiance);
 #endif
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  bool inFrame = pixel.x < uFrameWidth && pixel.y < uFrameHeight;
+  if (!anyInvocationCovers(inFrame && surfaceCovered(pixel))) {
+    if (inFrame) storeRadiance(pixel, vec4(0.0));
+    return;
+  }
+  if (inFrame) storeRadiance(pixel, directRadiance(pixel));
 }

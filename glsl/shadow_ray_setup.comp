@@ -7,7 +7,10 @@
 // With LGH_POINT_LIGHT_RAYS (the shadowed brute-force reference): one ray to each of
 // uRaysPerPixel point lights of the PointLight SSBO from uFirstLight on, at their exact positions.
 // Inputs: G-buffer position and normal, lights SSBO, LGH samples. Outputs: origins, targets.
+// Invocation groups of background pixels only write that they have no rays
+// (include/skip_background.glsl).
 
+#include "include/skip_background.glsl"
 #include "include/gbuffer.glsl"
 #include "include/lights.glsl"
 #include "include/reservoir.glsl"
@@ -106,15 +109,25 @@ vec4 directTarget(int light, int sampleIndex, vec3 origin, uint pixelSeed) {
   return vec4(diskPoint(l.positionType.xyz, size, origin, u), 1.0);
 }
 
+// A pixel without a surface: origin w = 0 says so to the tracer.
+void writeNoRays(uint pixelIndex, uint firstTarget) {
+  origins[pixelIndex] = vec4(0.0);
+  for (int ray = 0; ray < uRaysPerPixel; ++ray) targets[firstTarget + uint(ray)] = NO_RAY;
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(pixel, uFrameSize))) return;
+  bool inFrame = all(lessThan(pixel, uFrameSize));
   uint pixelIndex = uint(pixel.y) * uint(uFrameSize.x) + uint(pixel.x);
   uint firstTarget = pixelIndex * uint(uRaysPerPixel);
+  if (!anyInvocationCovers(inFrame && surfaceCovered(pixel))) {
+    if (inFrame) writeNoRays(pixelIndex, firstTarget);
+    return;
+  }
+  if (!inFrame) return;
   SurfacePoint s;
   if (!readSurface(pixel, s)) {
-    origins[pixelIndex] = vec4(0.0);
-    for (int ray = 0; ray < uRaysPerPixel; ++ray) targets[firstTarget + uint(ray)] = NO_RAY;
+    writeNoRays(pixelIndex, firstTarget);
     return;
   }
   vec3 origin = s.position + s.normal * uSurfaceOffset;

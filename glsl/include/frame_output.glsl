@@ -17,6 +17,9 @@ uniform vec4 uBackground;  // rgb, a = alpha of the background (0 when transpare
 #ifdef LGH_DISPLAY_OUTPUT
 uniform int uToneMap;  // LGH_TONE_MAP_*
 uniform float uExposure;
+// uBackground's display codes, as the CPU's display transform gives them: the same for every
+// background pixel, so no pixel computes them (composite_pass.cpp).
+uniform uvec4 uBackgroundCodes;
 layout(binding = LGH_IMAGE_OUTPUT, rgba8ui) writeonly uniform uimage2D uCodes;
 #else
 layout(binding = LGH_IMAGE_OUTPUT, LGH_OUTPUT_FORMAT) writeonly uniform image2D uColor;
@@ -33,6 +36,15 @@ void storeOutput(ivec2 target, vec4 color) {
                    lghDisplayChannel(color.b, uToneMap, uExposure), lghAlpha8(color.a)));
 #else
   imageStore(uColor, target, color);
+#endif
+}
+
+// The background at `target`: uBackground, displayed.
+void storeBackground(ivec2 target) {
+#ifdef LGH_DISPLAY_OUTPUT
+  imageStore(uCodes, target, uBackgroundCodes);
+#else
+  imageStore(uColor, target, uBackground);
 #endif
 }
 

@@ -35,6 +35,9 @@ layout(binding = 3) uniform sampler2D gMaterial;
 layout(binding = 4) uniform sampler2D gEmissive;
 layout(binding = LGH_UNIT_GBUFFER_LAYERS) uniform usampler2D gLayers;
 
+// Whether geometry was drawn at `pixel` (readSurface's answer, from the position target alone).
+bool surfaceCovered(ivec2 pixel) { return texelFetch(gPosition, pixel, 0).w > 0.5; }
+
 bool readSurface(ivec2 pixel, out SurfacePoint s) {
   vec4 position = texelFetch(gPosition, pixel, 0);
   vec4 albedo = texelFetch(gAlbedo, pixel, 0);

@@ -75,11 +75,17 @@ gl::Program buildCompositeProgram(OutputPixels pixels, bool toScene) {
   return buildFrameOutputProgram("composite.comp", "", pixels);
 }
 
-void setBackground(GLuint program, const OutputSettings& output) {
+void setBackground(GLuint program, const OutputSettings& output, OutputPixels pixels) {
   const float alpha = output.transparentBackground ? 0.0F : 1.0F;
   const auto& bg = output.background;
-  glProgramUniform4f(program, glGetUniformLocation(program, "uBackground"), bg[0] * alpha,
-                     bg[1] * alpha, bg[2] * alpha, alpha);
+  const FloatImage background{1, 1, {bg[0] * alpha, bg[1] * alpha, bg[2] * alpha, alpha}};
+  glProgramUniform4fv(program, glGetUniformLocation(program, "uBackground"), 1,
+                      background.rgba.data());
+  if (pixels != OutputPixels::Display8) return;
+  // One pixel through the CPU's display transform, which the GPU's follows step for step.
+  const Image8 codes = toDisplay8(background, output.toneMap, output.exposure, true);
+  glProgramUniform4ui(program, glGetUniformLocation(program, "uBackgroundCodes"), codes.pixels[0],
+                      codes.pixels[1], codes.pixels[2], codes.pixels[3]);
 }
 
 std::string frameOutputDefines(OutputPixels pixels) {
@@ -107,7 +113,7 @@ gl::Program buildFrameOutputProgram(const char* computeShader, const std::string
 void bindFrameOutput(GLuint program, const OutputSettings& output, OutputPixels pixels,
                      FrameTargets& targets) {
   setDisplayUniforms(program, output, targets.height);
-  setBackground(program, output);
+  setBackground(program, output, pixels);
   glBindImageTexture(LGH_IMAGE_OUTPUT, targets.output(pixels).texture.id(), 0, GL_FALSE, 0,
                      GL_WRITE_ONLY, imageFormat(pixels));
 }
@@ -145,7 +151,7 @@ void CompositePass::dispatch(const OutputSettings& output, OutputPixels pixels, 
   glBindTextures(0, 3, textures);
   if (toScene) {
     glProgramUniform1i(program, glGetUniformLocation(program, "uHeight"), targets.height);
-    setBackground(program, output);
+    setBackground(program, output, OutputPixels::LinearFloat);
     glBindImageTexture(LGH_IMAGE_OUTPUT, targets.sceneLinear().texture.id(), 0, GL_FALSE, 0,
                        GL_WRITE_ONLY, GL_RGBA32F);
   } else {
