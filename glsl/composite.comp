@@ -32,6 +32,7 @@ uniform bool uHasShadowRatio;
 uniform int uWidth;
 
 layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
+#include "include/balanced_tiles.glsl"  // after the work-group size
 
 // Where geometry was drawn.
 vec4 linearColor(ivec2 pixel) {
@@ -44,7 +45,7 @@ vec4 linearColor(ivec2 pixel) {
 }
 
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 pixel = balancedPixel();
   bool inFrame = pixel.x < uWidth && pixel.y < uHeight;
   bool covered = inFrame && texelFetch(uCoverage, pixel, 0).w >= 0.5;
 #ifdef LGH_SCENE_TARGET

@@ -32,6 +32,7 @@ layout(binding = LGH_IMAGE_OUTPUT, rgba16f) writeonly uniform image2D uRadiance;
 #endif
 
 layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
+#include "include/balanced_tiles.glsl"  // after the work-group size
 
 uniform int uLightCount;
 uniform vec3 uCameraPosition;
@@ -87,7 +88,7 @@ void storeRadiance(ivec2 pixel, vec4 radiance) {
 }
 
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 pixel = balancedPixel();
   bool inFrame = pixel.x < uFrameWidth && pixel.y < uFrameHeight;
   if (!anyInvocationCovers(inFrame && surfaceCovered(pixel))) {
     if (inFrame) storeRadiance(pixel, vec4(0.0));

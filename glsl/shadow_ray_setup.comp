@@ -24,6 +24,7 @@ uniform int uFirstLight;
 #endif
 
 layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
+#include "include/balanced_tiles.glsl"  // after the work-group size
 
 layout(std430, binding = LGH_BIND_LIGHTS) readonly buffer Lights { Light lights[]; };
 layout(std430, binding = LGH_BIND_SAMPLES) readonly buffer LghSamples {
@@ -116,7 +117,7 @@ void writeNoRays(uint pixelIndex, uint firstTarget) {
 }
 
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 pixel = balancedPixel();
   bool inFrame = all(lessThan(pixel, uFrameSize));
   uint pixelIndex = uint(pixel.y) * uint(uFrameSize.x) + uint(pixel.x);
   uint firstTarget = pixelIndex * uint(uRaysPerPixel);

@@ -6,6 +6,7 @@
 #include "include/shadow_rays.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
+#include "include/balanced_tiles.glsl"  // after the work-group size
 
 bool traceShadowRay(ShadowRay ray) {
   rayQueryEXT query;
@@ -17,4 +18,4 @@ bool traceShadowRay(ShadowRay ray) {
   return rayQueryGetIntersectionTypeEXT(query, true) == gl_RayQueryCommittedIntersectionNoneEXT;
 }
 
-void main() { traceShadowPixel(gl_GlobalInvocationID.xy); }
+void main() { traceShadowPixel(uvec2(balancedPixel())); }

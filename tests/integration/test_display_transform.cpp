@@ -9,6 +9,7 @@
 // nothing is computed before the count, so the codes must be equal.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -199,6 +200,57 @@ TEST_F(DisplayTransform, PngFramesMatchTheCpuTransformOfTheLinearFrame) {
     }
     EXPECT_LE(largest, 1) << json;
     EXPECT_LT(differing, gpu.pixels.size() / 100) << json;
+  }
+}
+
+// The background's codes come from the CPU's display transform of the background colour (the
+// pixels of a SIMD group that is all background skip the per-pixel transform,
+// include/skip_background.glsl): every background pixel, in groups of background alone and beside
+// the surfaces, holds exactly toDisplay8 of the colour, for each tone map, exposures, a colour on
+// an sRGB threshold, and the transparent background. Odd sizes leave part-filled groups at the
+// edges; the LGH frame writes its output in the composite pass, the others in the direct lighting.
+TEST_F(DisplayTransform, BackgroundPixelsHoldTheCpuCodesOfTheBackgroundColour) {
+  const float onThreshold = lgh::image_io::detail::srgbThresholds()[100];
+  const std::vector<std::string> requests = {
+      R"({"scene": {"asset": "BoxTextured-glTF/BoxTextured.gltf"},
+          "output": {"width": 45, "height": 27}})",
+      R"({"scene": {"asset": "BoxTextured-glTF/BoxTextured.gltf"},
+          "output": {"width": 37, "height": 29, "tone_map": "reinhard", "exposure": 0.7,
+                     "background": [3.0, 0.5, 0.0007]}})",
+      fmt::format(R"({{"scene": {{"asset": "BoxTextured-glTF/BoxTextured.gltf"}},
+          "output": {{"width": 40, "height": 40, "tone_map": "none",
+                     "background": [{0:.9g}, {0:.9g}, {0:.9g}]}}}})",
+                  onThreshold),
+      R"({"scene": {"asset": "BoxTextured-glTF/BoxTextured.gltf"},
+          "output": {"width": 33, "height": 17, "transparent_background": true,
+                     "background": [0.4, 0.2, 0.1]}})",
+      R"({"output": {"width": 48, "height": 40, "exposure": 2.0}})",
+  };
+  for (const std::string& json : requests) {
+    const lgh::RenderRequest png = lgh::parseRenderRequest(json);
+    lgh::RenderRequest exr = png;
+    exr.output.format = lgh::ImageFormat::ExrFloat;
+    const lgh::Image8 display = renderer->renderFrame(png).pixels.toImage8();
+    const lgh::FloatImage linear = renderer->renderFrame(exr).pixels.toFloatImage();
+    const float alpha = png.output.transparentBackground ? 0.0F : 1.0F;
+    const auto& bg = png.output.background;
+    const lgh::FloatImage background{1, 1, {bg[0] * alpha, bg[1] * alpha, bg[2] * alpha, alpha}};
+    const lgh::Image8 codes =
+        lgh::toDisplay8(background, png.output.toneMap, png.output.exposure, true);
+    const int channels = display.channels;
+    std::size_t backgroundPixels = 0;
+    for (int i = 0; i < linear.width * linear.height; ++i) {
+      if (!std::equal(background.rgba.begin(), background.rgba.end(), &linear.rgba[i * 4]))
+        continue;
+      ++backgroundPixels;
+      for (int c = 0; c < channels; ++c) {
+        ASSERT_EQ(display.pixels[static_cast<std::size_t>(i * channels + c)], codes.pixels[c])
+            << json << " pixel " << i << " channel " << c;
+      }
+    }
+    EXPECT_GT(backgroundPixels, static_cast<std::size_t>(linear.width * linear.height / 10))
+        << json;
+    EXPECT_LT(backgroundPixels, static_cast<std::size_t>(linear.width * linear.height)) << json;
   }
 }
 
