@@ -71,6 +71,11 @@ class FramePipeline {
                                                   FrameReport& report, OutputPixels pixels,
                                                   int set);
   void finishDraw(const RemainingPasses& remaining, gl::GpuTimer& timer);
+  // Whether finishDraw() would issue its passes without the CPU waiting for the frame's rays
+  // (always where GL waits for Vulkan on the GPU).
+  bool finishReady(const RemainingPasses& remaining) {
+    return frameSet(remaining.set).shadows.visibilityReady();
+  }
   // Frames larger than this are drawn whole: a second set of their targets costs more memory
   // than the overlap saves time (their own passes keep the GPU busy).
   static constexpr long kMaxSplitPixels = 1280L * 720L;

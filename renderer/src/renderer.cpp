@@ -124,8 +124,11 @@ struct Renderer::Impl {
   bool poll(PendingFrame& frame) {
     if (frame.readBack) return true;
     if (frame.remaining) {
-      finishDeferred(frame);  // nothing else would issue it while no frame follows
-      return false;
+      // Issued here once its rays are traced, since nothing else would issue it while no frame
+      // follows; not before: the caller's next submit() draws while Vulkan traces (a CPU
+      // tracer's wait here held the render thread for the whole trace).
+      if (!pipeline.finishReady(*frame.remaining)) return false;
+      finishDeferred(frame);
     }
     if (!frame.fence.wait(0)) return false;
     frame.readBack = Stopwatch::Clock::now();

@@ -15,10 +15,13 @@
 #include <unistd.h>
 
 #include <bit>
+#include <chrono>
 #include <cstring>
 #include <iostream>
 #include <memory>
 #include <random>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -373,6 +376,42 @@ TEST_P(ShadowTracerPath, SubmittedTracesInTwoLanesGiveWhatWaitedTracesGive) {
   EXPECT_GT(tracer->collectTimingsThrough(second).traceGpuMs, 0.0);
 }
 
+// traceFinished() asks without waiting (a renderer's poll issues a split frame's last passes only
+// once it says so): it turns true for a submitted trace without any wait, the earlier trace is
+// finished when the later is, the bits are there by then, and each trace's GPU time is read on
+// its own (from the host copy the queue wrote: lavapipe's query read waits for the whole queue).
+TEST_P(ShadowTracerPath, TraceFinishedTurnsTrueWithoutAWait) {
+  Batch batch = groundGrid(32, 32, 1);
+  for (std::size_t p = 0; p < batch.shape.pixels(); ++p) batch.target(p, 0) = {kPointLight, 1.0F};
+  const std::size_t wordCount = batch.shape.pixels() * batch.shape.words();
+  const std::vector<std::uint32_t> boxWords = trace(*box, batch);
+  EXPECT_TRUE(tracer->traceFinished(tracer->lastTrace()));
+  for (const lgh::vk::RayLane lane : {0U, 1U}) {
+    const auto& buffers = tracer->rayBuffers(batch.shape, Transport::Staging, lane);
+    std::memcpy(buffers.origins.mapped, batch.origins.data(),
+                batch.origins.size() * sizeof(glm::vec4));
+    std::memcpy(buffers.targets.mapped, batch.targets.data(),
+                batch.targets.size() * sizeof(glm::vec4));
+    std::memset(buffers.visibility.mapped, 0xFF, wordCount * sizeof(std::uint32_t));
+  }
+  const std::uint64_t first = tracer->submitTrace(*box, GetParam(), batch.shape, {}, 0);
+  const std::uint64_t second = tracer->submitTrace(*box, GetParam(), batch.shape, {}, 1);
+  const auto giveUp = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!tracer->traceFinished(second) && std::chrono::steady_clock::now() < giveUp) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ASSERT_TRUE(tracer->traceFinished(second)) << "the trace never finished";
+  EXPECT_TRUE(tracer->traceFinished(first));
+  for (const lgh::vk::RayLane lane : {0U, 1U}) {
+    const auto& buffers = tracer->rayBuffers(batch.shape, Transport::Staging, lane);
+    std::vector<std::uint32_t> words(wordCount);
+    std::memcpy(words.data(), buffers.visibility.mapped, wordCount * sizeof(std::uint32_t));
+    EXPECT_EQ(words, boxWords) << "lane " << lane;
+  }
+  EXPECT_GT(tracer->collectTimingsThrough(first).traceGpuMs, 0.0);
+  EXPECT_GT(tracer->collectTimingsThrough(second).traceGpuMs, 0.0);
+}
+
 INSTANTIATE_TEST_SUITE_P(Paths, ShadowTracerPath,
                          ::testing::Values(TracePath::RayQuery, TracePath::Pipeline),
                          [](const auto& info) {
@@ -423,6 +462,25 @@ TEST_F(ShadowTracerTest, BothPathsSetTheSameBits) {
   EXPECT_GT(pipelineMs, 0.0);
   std::cout << fmt::format("{} rays, open scene: ray query {:.3f} ms, pipeline {:.3f} ms (GPU)\n",
                            batch.targets.size(), queryMs, pipelineMs);
+}
+
+// The ray-query shader interleaves the rows of work groups (include/balanced_tiles.glsl) where the
+// pipeline's launch takes pixels as they come: at odd and even counts of rows of 8 x 8 tiles, and
+// a last row or column only partly in the batch, both paths set the same bits for every pixel.
+TEST_F(ShadowTracerTest, BothPathsSetTheSameBitsWhateverTheRowsOfTiles) {
+  if (!tracer->supports(TracePath::RayQuery) || !tracer->supports(TracePath::Pipeline)) {
+    GTEST_SKIP() << "one tracing path only";
+  }
+  for (const auto [width, height] : {std::pair{37U, 19U}, std::pair{30U, 33U}, std::pair{9U, 8U},
+                                     std::pair{16U, 41U}, std::pair{5U, 3U}}) {
+    const Batch batch = randomBatch(width, height, 2);
+    const auto query = trace(TracePath::RayQuery, *box, batch);
+    const auto pipeline = trace(TracePath::Pipeline, *box, batch);
+    ASSERT_EQ(query.size(), pipeline.size());
+    for (std::size_t p = 0; p < batch.shape.pixels(); ++p) {
+      ASSERT_EQ(query[p], pipeline[p]) << width << "x" << height << " pixel " << p;
+    }
+  }
 }
 
 TEST_F(ShadowTracerTest, StagingBuffersGrowOnlyAndEachReallocationIsANewGeneration) {

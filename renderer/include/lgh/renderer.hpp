@@ -47,7 +47,9 @@ class Renderer {
   std::uint64_t submit(const RenderRequest& request);
   // The oldest pending frame, once its pixels are read back (`encoded` empty: encode it with
   // RenderResult::encode, anywhere). Without `wait`, nullopt while it is still on the GPU; nullopt
-  // when none is pending. Throws lgh::Error(Internal) when the GPU cannot be waited for.
+  // when none is pending. Without `wait` nothing is waited for: a split frame (docs/SHADOWS.md,
+  // "Overlapped frames") whose rays are still being traced stays for the next submit() or a later
+  // call. Throws lgh::Error(Internal) when the GPU cannot be waited for.
   std::optional<RenderResult> finish(bool wait);
   std::size_t pendingFrames() const;
 

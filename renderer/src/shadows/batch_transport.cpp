@@ -283,6 +283,10 @@ double BatchTransport::trace(const BuffersFor& buffersFor, std::span<const std::
   return cpu.elapsedMs();
 }
 
+bool BatchTransport::resultsReady() const {
+  return submittedTrace_ == 0 || tracer_.traceFinished(submittedTrace_);
+}
+
 void BatchTransport::awaitResults() {
   if (submittedTrace_ != 0) {
     const std::uint64_t trace = std::exchange(submittedTrace_, 0);

@@ -92,6 +92,9 @@ class BatchTransport {
   // the CPU waits for it and copies its results back (staging with a submitted trace); the
   // other transports have nothing left to do. Once per handOver().
   void awaitResults();
+  // Whether awaitResults() would return without waiting for Vulkan: no trace is pending, or its
+  // fence has signalled (with semaphores, GL itself waits on the GPU: always).
+  bool resultsReady() const;
 
   // "interop" (semaphores), "interop-finish", "pinned" or "staging".
   std::string name() const;

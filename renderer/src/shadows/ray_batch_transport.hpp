@@ -34,6 +34,7 @@ class RayBatchTransport {
   double handOver(const vk::TraceScene& scene, vk::TracePath path, const vk::RayBatchShape& shape,
                   const vk::TraceParams& params);
   void awaitResults() { transport_.awaitResults(); }
+  bool resultsReady() const { return transport_.resultsReady(); }
 
   // "interop" (semaphores), "interop-finish" or "staging".
   std::string name() const { return transport_.name(); }

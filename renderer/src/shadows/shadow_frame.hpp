@@ -56,6 +56,8 @@ class ShadowFrame {
              gl::GpuTimer& timer, FrameReport& report);
   // GL's next commands (the readers of visibility()) wait for the trace. No-op without one.
   void awaitVisibility();
+  // Whether awaitVisibility() would return without the CPU waiting for Vulkan's trace.
+  bool visibilityReady() const { return !awaiting_ || !transport_ || transport_->resultsReady(); }
 
   // The layout and visibility buffer the direct lighting reads (shadowedLights 0: unshadowed),
   // once awaitVisibility() has been called.

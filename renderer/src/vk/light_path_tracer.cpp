@@ -167,6 +167,9 @@ LightPathTracer::LightPathTracer(const VulkanDevice& device, const HitTracer& hi
     queries_.emplace(device.device(),
                      ::vk::QueryPoolCreateInfo{.queryType = ::vk::QueryType::eTimestamp,
                                                .queryCount = kTimestamps});
+    stamps_.emplace(device, BufferSpec{.size = kTimestamps * sizeof(std::uint64_t),
+                                       .usage = ::vk::BufferUsageFlagBits::eTransferDst,
+                                       .memory = MemoryKind::HostVisible});
   }
 }
 
@@ -362,6 +365,13 @@ void LightPathTracer::record(const TraceRecorder& recorder, const LightPathBatch
     runKernel(bounce_);
     stamp(2 * bounce + 1, Stage::eBottomOfPipe);
   }
+  if (queries_) {
+    commands.copyQueryPoolResults(
+        **queries_, 0, 2 + 2 * batch.bounces, stamps_->handle(), stamps_->offset(),
+        sizeof(std::uint64_t), ::vk::QueryResultFlagBits::e64 | ::vk::QueryResultFlagBits::eWait);
+    memoryBarrier(commands, Stage::eTransfer, Access::eTransferWrite, Stage::eHost,
+                  Access::eHostRead);
+  }
   if (interop) {
     // Release to GL, which reads after the vkDone semaphore (or once trace() has returned).
     transferVpls(commands, vpls_->handle(), kernels | Stage::eTransfer,
@@ -407,11 +417,8 @@ void LightPathTracer::retire() {
   timings.traced = true;
   if (!queries_) return;
   const std::uint32_t count = 2 + 2 * inFlightBounces_;
-  const auto results = queries_->getResults<std::uint64_t>(
-      0, count, count * sizeof(std::uint64_t), sizeof(std::uint64_t),
-      ::vk::QueryResultFlagBits::e64);  // after the fence: available (see TimestampQueries)
-  if (results.first != ::vk::Result::eSuccess) return;
-  const std::vector<std::uint64_t>& ticks = results.second;
+  std::vector<std::uint64_t> ticks(count);  // after the fence: the queue's copy is there
+  std::memcpy(ticks.data(), stamps_->mapped(), count * sizeof(std::uint64_t));
   const auto ms = [&](std::uint32_t from, std::uint32_t to) {
     return ticks[to] < ticks[from]
                ? 0.0

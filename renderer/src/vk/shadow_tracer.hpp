@@ -266,6 +266,8 @@ class ShadowTracer {
                                     RayLane lane) = 0;
   // Returns once the traces numbered `number` and lower have finished on the GPU.
   virtual void awaitTrace(std::uint64_t number) = 0;
+  // Whether awaitTrace(number) would return at once: asks the fences, never waits.
+  virtual bool traceFinished(std::uint64_t number) = 0;
 
   // Traces are numbered 1, 2, ... by the tracer: the number of the last trace() (0: none).
   virtual std::uint64_t lastTrace() const = 0;

@@ -69,6 +69,16 @@ void TraceSubmissions::retireThrough(std::uint64_t through) {
   }
 }
 
+bool TraceSubmissions::finished(std::uint64_t through) const {
+  for (std::size_t slot = 0; slot < fences_.size(); ++slot) {
+    if (inFlight_[slot] && numberOf_[slot] <= through &&
+        fences_[slot].getStatus() != ::vk::Result::eSuccess) {
+      return false;
+    }
+  }
+  return true;
+}
+
 double TraceSubmissions::takeGpuMs(std::uint64_t through) {
   retireThrough(through);
   double gpuMs = 0.0;

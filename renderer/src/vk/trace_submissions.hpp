@@ -37,6 +37,9 @@ class TraceSubmissions {
   void retireAll();
   // Retires the slots in flight whose submissions are numbered `through` or lower.
   void retireThrough(std::uint64_t through);
+  // Whether the submissions numbered `through` or lower have all finished: their fences are asked,
+  // nothing is waited for or retired.
+  bool finished(std::uint64_t through) const;
   // The GPU time of submissions up to and including number `through` that no earlier call
   // returned, summed; waits for those still running, not for later ones.
   double takeGpuMs(std::uint64_t through);

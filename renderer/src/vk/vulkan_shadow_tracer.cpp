@@ -163,6 +163,10 @@ class VulkanShadowTracer final : public ShadowTracer {
     translateVulkanErrors("awaitTrace", [&] { submissions_.retireThrough(number); });
   }
 
+  bool traceFinished(std::uint64_t number) override {
+    return translateVulkanErrors("traceFinished", [&] { return submissions_.finished(number); });
+  }
+
   std::uint64_t lastTrace() const override { return submissions_.lastSubmission(); }
   TraceTimings collectTimingsThrough(std::uint64_t through) override {
     return translateVulkanErrors("collectTimings", [&] {
