@@ -237,20 +237,21 @@ TEST_F(DisplayTransform, BackgroundPixelsHoldTheCpuCodesOfTheBackgroundColour) {
     const lgh::FloatImage background{1, 1, {bg[0] * alpha, bg[1] * alpha, bg[2] * alpha, alpha}};
     const lgh::Image8 codes =
         lgh::toDisplay8(background, png.output.toneMap, png.output.exposure, true);
-    const int channels = display.channels;
+    const auto channels = static_cast<std::size_t>(display.channels);
+    const auto pixelCount = static_cast<std::size_t>(linear.width) * linear.height;
     std::size_t backgroundPixels = 0;
-    for (int i = 0; i < linear.width * linear.height; ++i) {
-      if (!std::equal(background.rgba.begin(), background.rgba.end(), &linear.rgba[i * 4]))
+    for (std::size_t i = 0; i < pixelCount; ++i) {
+      if (!std::equal(background.rgba.begin(), background.rgba.end(), &linear.rgba[i * 4])) {
         continue;
+      }
       ++backgroundPixels;
-      for (int c = 0; c < channels; ++c) {
-        ASSERT_EQ(display.pixels[static_cast<std::size_t>(i * channels + c)], codes.pixels[c])
+      for (std::size_t c = 0; c < channels; ++c) {
+        ASSERT_EQ(display.pixels[i * channels + c], codes.pixels[c])
             << json << " pixel " << i << " channel " << c;
       }
     }
-    EXPECT_GT(backgroundPixels, static_cast<std::size_t>(linear.width * linear.height / 10))
-        << json;
-    EXPECT_LT(backgroundPixels, static_cast<std::size_t>(linear.width * linear.height)) << json;
+    EXPECT_GT(backgroundPixels, pixelCount / 10) << json;
+    EXPECT_LT(backgroundPixels, pixelCount) << json;
   }
 }
 
