@@ -1,11 +1,11 @@
 #include "context/gl_context.hpp"
 
-#include <algorithm>
 #include <vector>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "gl/software_rasterizer.hpp"
 #include "lgh/error.hpp"
 #include "lgh/image.hpp"
 
@@ -95,11 +95,7 @@ void GlContext::readGlInfo() {
   info_.glslVersion = text(GL_SHADING_LANGUAGE_VERSION);
   glGetIntegerv(GL_MAJOR_VERSION, &info_.glMajor);
   glGetIntegerv(GL_MINOR_VERSION, &info_.glMinor);
-  std::string lower = info_.glRenderer;
-  std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
-  info_.softwareRenderer = lower.find("llvmpipe") != std::string::npos ||
-                           lower.find("softpipe") != std::string::npos ||
-                           lower.find("swrast") != std::string::npos;
+  info_.softwareRenderer = gl::softwareRasterizer();  // the passes' own test, one list of names
 }
 
 void GlContext::installDebugOutput() {

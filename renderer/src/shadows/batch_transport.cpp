@@ -136,9 +136,7 @@ void BatchTransport::decide(const BuffersFor& buffersFor) {
     why = "the Vulkan device cannot export memory";
   } else if (!glHasMemoryInterop()) {
     why = "the GL context has no GL_EXT_memory_object_fd";
-  } else if (const BatchBuffers interop = buffersFor(vk::Transport::Interop); importAll(interop)) {
-    generation_ = interop.generation;
-    haveBuffers_ = true;
+  } else if (attach(buffersFor(vk::Transport::Interop), &BatchTransport::importAll)) {
     mode_ = importSemaphores() ? Mode::InteropSemaphores : Mode::InteropFinish;
     spdlog::info("{}: {} handed over in shared GPU memory ({})", layout_.logPrefix, layout_.batches,
                  name());
@@ -165,10 +163,17 @@ std::string BatchTransport::tryPinning(const BatchBuffers& buffers) {
   if (gl::api("GL_AMD_pinned_memory").AMD_pinned_memory == 0) {
     return "the GL context has no GL_AMD_pinned_memory";
   }
-  if (!pinAll(buffers)) return "GL could not pin the Vulkan memory";
+  if (!attach(buffers, &BatchTransport::pinAll)) return "GL could not pin the Vulkan memory";
+  return {};
+}
+
+bool BatchTransport::attach(const BatchBuffers& buffers,
+                            bool (BatchTransport::*attachAll)(const BatchBuffers&)) {
+  if (haveBuffers_ && buffers.generation == generation_) return true;
+  if (!(this->*attachAll)(buffers)) return false;
   generation_ = buffers.generation;
   haveBuffers_ = true;
-  return {};
+  return true;
 }
 
 bool BatchTransport::pinAll(const BatchBuffers& buffers) {
@@ -182,6 +187,7 @@ bool BatchTransport::pinAll(const BatchBuffers& buffers) {
     }
     spdlog::info("{}: pinning the {} into GL failed: {}", layout_.logPrefix, layout_.bufferNames,
                  failure);
+    for (gl::Buffer& buffer : pinned_) buffer = gl::Buffer::empty();
     return false;
   }
   return true;
@@ -232,14 +238,9 @@ std::span<const GLuint> BatchTransport::prepare(const BuffersFor& buffersFor) {
     // GL does not keep pinned memory alive: nothing of GL's may still use it when Vulkan grows
     // the buffers below (on a CPU rasterizer the batch's passes wait for the same work anyway).
     glFinish();
-    const BatchBuffers buffers = buffersFor(vk::Transport::Staging);
-    if (!haveBuffers_ || buffers.generation != generation_) {
-      if (!pinAll(buffers)) {
-        throw Error(ErrorCode::Internal, fmt::format("{}: GL could not pin the grown {}",
-                                                     layout_.logPrefix, layout_.bufferNames));
-      }
-      generation_ = buffers.generation;
-      haveBuffers_ = true;
+    if (!attach(buffersFor(vk::Transport::Staging), &BatchTransport::pinAll)) {
+      throw Error(ErrorCode::Internal, fmt::format("{}: GL could not pin the grown {}",
+                                                   layout_.logPrefix, layout_.bufferNames));
     }
     for (std::size_t i = 0; i < count; ++i) ids_[i] = pinned_[i].id();
     return {ids_.data(), count};
@@ -252,14 +253,9 @@ std::span<const GLuint> BatchTransport::prepare(const BuffersFor& buffersFor) {
     }
     return {ids_.data(), count};
   }
-  const BatchBuffers buffers = buffersFor(vk::Transport::Interop);
-  if (!haveBuffers_ || buffers.generation != generation_) {
-    if (!importAll(buffers)) {
-      throw Error(ErrorCode::Internal, fmt::format("{}: GL could not import the grown {}",
-                                                   layout_.logPrefix, layout_.bufferNames));
-    }
-    generation_ = buffers.generation;
-    haveBuffers_ = true;
+  if (!attach(buffersFor(vk::Transport::Interop), &BatchTransport::importAll)) {
+    throw Error(ErrorCode::Internal, fmt::format("{}: GL could not import the grown {}",
+                                                 layout_.logPrefix, layout_.bufferNames));
   }
   for (std::size_t i = 0; i < count; ++i) ids_[i] = imported_[i].buffer.id();
   return {ids_.data(), count};

@@ -107,9 +107,13 @@ class BatchTransport {
   };
 
   void decide(const BuffersFor& buffersFor);
+  // GL's buffers on `buffers` (importAll or pinAll as `attachAll`), unless they were made for
+  // their generation already; false when GL refuses them.
+  bool attach(const BatchBuffers& buffers, bool (BatchTransport::*attachAll)(const BatchBuffers&));
   bool importAll(const BatchBuffers& buffers);
   // Why the batch cannot go through pinned memory, or "" when pinAll(buffers) succeeded.
   std::string tryPinning(const BatchBuffers& buffers);
+  // All or none: a failure releases the buffers pinned before it.
   bool pinAll(const BatchBuffers& buffers);
   bool importSemaphores();
   // The interop GL buffers whose use says `named` (signalled or waited), and how many.
