@@ -1,8 +1,7 @@
-// Include it after the work-group size. The pixel of this invocation in a per-pixel compute pass
-// whose work groups tile the frame, with
+// The pixel of this invocation in a per-pixel compute pass whose work groups tile the frame, with
 // the rows of work groups interleaved: in dispatch order, the first half of the groups covers the
 // even rows of tiles and the second half the odd ones. Used by the GL passes and by Vulkan's
-// ray-query trace alike (plain GLSL).
+// ray-query trace alike (plain GLSL); include it after the work-group size is declared.
 //
 // Why: a CPU rasteriser's compute thread pool (llvmpipe's, which lavapipe shares) gives each of
 // its N threads one contiguous N-th of the work groups in dispatch order, not work as it frees
