@@ -149,20 +149,31 @@ class ShadowTracerTest : public ::testing::Test {
     context.reset();
   }
 
-  // Traces `batch` through staging buffers; the visibility words come back. The buffers are
-  // filled with ones first, so that a word the trace leaves alone shows.
-  static std::vector<std::uint32_t> trace(TracePath path, const TraceScene& scene,
-                                          const Batch& batch, const TraceParams& params = {}) {
-    const auto& buffers = tracer->rayBuffers(batch.shape, Transport::Staging);
+  // Puts `batch` into lane `lane`'s staging buffers, the visibility filled with ones (so that a
+  // word the trace leaves alone shows).
+  static void fillLane(const Batch& batch, lgh::vk::RayLane lane) {
+    const auto& buffers = tracer->rayBuffers(batch.shape, Transport::Staging, lane);
     std::memcpy(buffers.origins.mapped, batch.origins.data(),
                 batch.origins.size() * sizeof(glm::vec4));
     std::memcpy(buffers.targets.mapped, batch.targets.data(),
                 batch.targets.size() * sizeof(glm::vec4));
+    std::memset(buffers.visibility.mapped, 0xFF,
+                batch.shape.pixels() * batch.shape.words() * sizeof(std::uint32_t));
+  }
+  // Lane `lane`'s visibility words for `batch`'s shape.
+  static std::vector<std::uint32_t> laneWords(const Batch& batch, lgh::vk::RayLane lane) {
+    const auto& buffers = tracer->rayBuffers(batch.shape, Transport::Staging, lane);
     std::vector<std::uint32_t> words(batch.shape.pixels() * batch.shape.words());
-    std::memset(buffers.visibility.mapped, 0xFF, words.size() * sizeof(std::uint32_t));
-    tracer->trace(scene, path, batch.shape, params, false);
     std::memcpy(words.data(), buffers.visibility.mapped, words.size() * sizeof(std::uint32_t));
     return words;
+  }
+
+  // Traces `batch` through staging buffers; the visibility words come back.
+  static std::vector<std::uint32_t> trace(TracePath path, const TraceScene& scene,
+                                          const Batch& batch, const TraceParams& params = {}) {
+    fillLane(batch, 0);
+    tracer->trace(scene, path, batch.shape, params, false);
+    return laneWords(batch, 0);
   }
 
   // A path the device offers: ray query where it has it.
@@ -345,33 +356,18 @@ TEST_P(ShadowTracerPath, AnEmptySceneIsFullyVisible) {
 TEST_P(ShadowTracerPath, SubmittedTracesInTwoLanesGiveWhatWaitedTracesGive) {
   Batch batch = groundGrid(32, 32, 1);
   for (std::size_t p = 0; p < batch.shape.pixels(); ++p) batch.target(p, 0) = {kPointLight, 1.0F};
-  const std::size_t wordCount = batch.shape.pixels() * batch.shape.words();
   const std::vector<std::uint32_t> boxWords = trace(*box, batch);
   const std::vector<std::uint32_t> groundWords = trace(*ground, batch);
   ASSERT_NE(boxWords, groundWords);  // the box's shadow shows
-  const auto fill = [&](lgh::vk::RayLane lane) {
-    const auto& buffers = tracer->rayBuffers(batch.shape, Transport::Staging, lane);
-    std::memcpy(buffers.origins.mapped, batch.origins.data(),
-                batch.origins.size() * sizeof(glm::vec4));
-    std::memcpy(buffers.targets.mapped, batch.targets.data(),
-                batch.targets.size() * sizeof(glm::vec4));
-    std::memset(buffers.visibility.mapped, 0xFF, wordCount * sizeof(std::uint32_t));
-  };
-  fill(0);
-  fill(1);
+  fillLane(batch, 0);
+  fillLane(batch, 1);
   const std::uint64_t first = tracer->submitTrace(*box, GetParam(), batch.shape, {}, 0);
   const std::uint64_t second = tracer->submitTrace(*ground, GetParam(), batch.shape, {}, 1);
   EXPECT_EQ(second, first + 1);
   EXPECT_EQ(tracer->lastTrace(), second);
   tracer->awaitTrace(second);  // and so the first
-  const auto words = [&](lgh::vk::RayLane lane) {
-    const auto& buffers = tracer->rayBuffers(batch.shape, Transport::Staging, lane);
-    std::vector<std::uint32_t> out(wordCount);
-    std::memcpy(out.data(), buffers.visibility.mapped, wordCount * sizeof(std::uint32_t));
-    return out;
-  };
-  EXPECT_EQ(words(0), boxWords);
-  EXPECT_EQ(words(1), groundWords);
+  EXPECT_EQ(laneWords(batch, 0), boxWords);
+  EXPECT_EQ(laneWords(batch, 1), groundWords);
   // Their GPU times are banked for the frames that ask, as a waited trace's are.
   EXPECT_GT(tracer->collectTimingsThrough(second).traceGpuMs, 0.0);
 }
@@ -383,17 +379,10 @@ TEST_P(ShadowTracerPath, SubmittedTracesInTwoLanesGiveWhatWaitedTracesGive) {
 TEST_P(ShadowTracerPath, TraceFinishedTurnsTrueWithoutAWait) {
   Batch batch = groundGrid(32, 32, 1);
   for (std::size_t p = 0; p < batch.shape.pixels(); ++p) batch.target(p, 0) = {kPointLight, 1.0F};
-  const std::size_t wordCount = batch.shape.pixels() * batch.shape.words();
   const std::vector<std::uint32_t> boxWords = trace(*box, batch);
   EXPECT_TRUE(tracer->traceFinished(tracer->lastTrace()));
-  for (const lgh::vk::RayLane lane : {0U, 1U}) {
-    const auto& buffers = tracer->rayBuffers(batch.shape, Transport::Staging, lane);
-    std::memcpy(buffers.origins.mapped, batch.origins.data(),
-                batch.origins.size() * sizeof(glm::vec4));
-    std::memcpy(buffers.targets.mapped, batch.targets.data(),
-                batch.targets.size() * sizeof(glm::vec4));
-    std::memset(buffers.visibility.mapped, 0xFF, wordCount * sizeof(std::uint32_t));
-  }
+  fillLane(batch, 0);
+  fillLane(batch, 1);
   const std::uint64_t first = tracer->submitTrace(*box, GetParam(), batch.shape, {}, 0);
   const std::uint64_t second = tracer->submitTrace(*box, GetParam(), batch.shape, {}, 1);
   const auto giveUp = std::chrono::steady_clock::now() + std::chrono::seconds(60);
@@ -402,12 +391,8 @@ TEST_P(ShadowTracerPath, TraceFinishedTurnsTrueWithoutAWait) {
   }
   ASSERT_TRUE(tracer->traceFinished(second)) << "the trace never finished";
   EXPECT_TRUE(tracer->traceFinished(first));
-  for (const lgh::vk::RayLane lane : {0U, 1U}) {
-    const auto& buffers = tracer->rayBuffers(batch.shape, Transport::Staging, lane);
-    std::vector<std::uint32_t> words(wordCount);
-    std::memcpy(words.data(), buffers.visibility.mapped, wordCount * sizeof(std::uint32_t));
-    EXPECT_EQ(words, boxWords) << "lane " << lane;
-  }
+  EXPECT_EQ(laneWords(batch, 0), boxWords);
+  EXPECT_EQ(laneWords(batch, 1), boxWords);
   EXPECT_GT(tracer->collectTimingsThrough(first).traceGpuMs, 0.0);
   EXPECT_GT(tracer->collectTimingsThrough(second).traceGpuMs, 0.0);
 }
