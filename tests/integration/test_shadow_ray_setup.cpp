@@ -7,6 +7,7 @@
 //  - a classic model facing away gets none, whatever its flags byte says (not layer bits there).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <vector>
@@ -42,9 +43,12 @@ class ShadowRaySetup : public ::testing::Test {
   static void TearDownTestSuite() { context.reset(); }
 
   // The targets the pass writes for `surfaces` (one row of pixels) and `lights`, every light
-  // shadowed with one ray: per pixel, per light, whether it got a ray (target w >= 0).
+  // shadowed with one ray: per pixel, per light, whether it got a ray (target w >= 0). The
+  // origins' w go to `originW` when given (0: no surface). Both buffers start out holding 9s, so
+  // that a pixel the pass leaves alone shows.
   static std::vector<std::vector<bool>> rays(const std::vector<Surface>& surfaces,
-                                             const std::vector<lgh::LightDesc>& lights) {
+                                             const std::vector<lgh::LightDesc>& lights,
+                                             std::vector<float>* originW = nullptr) {
     lgh::FrameTargets frame;
     const int width = static_cast<int>(surfaces.size());
     frame.resize(width, 1);
@@ -69,10 +73,12 @@ class ShadowRaySetup : public ::testing::Test {
     const auto rayCount = static_cast<GLsizeiptr>(surfaces.size() * lights.size());
     lgh::gl::Buffer origins;
     lgh::gl::Buffer targets;
-    glNamedBufferStorage(origins.id(), width * static_cast<GLsizeiptr>(sizeof(glm::vec4)), nullptr,
-                         0);
+    const std::vector<glm::vec4> nines(
+        static_cast<std::size_t>(std::max<GLsizeiptr>(width, rayCount)), glm::vec4(9.0F));
+    glNamedBufferStorage(origins.id(), width * static_cast<GLsizeiptr>(sizeof(glm::vec4)),
+                         nines.data(), GL_DYNAMIC_STORAGE_BIT);
     glNamedBufferStorage(targets.id(), rayCount * static_cast<GLsizeiptr>(sizeof(glm::vec4)),
-                         nullptr, 0);
+                         nines.data(), GL_DYNAMIC_STORAGE_BIT);
     lgh::ShadowRaySetupInputs inputs;
     inputs.layout.shadowedLights = static_cast<int>(lights.size());
     inputs.lights = lightBuffer.id();
@@ -82,6 +88,13 @@ class ShadowRaySetup : public ::testing::Test {
     std::vector<glm::vec4> written(static_cast<std::size_t>(rayCount));
     glGetNamedBufferSubData(targets.id(), 0, rayCount * static_cast<GLsizeiptr>(sizeof(glm::vec4)),
                             written.data());
+    if (originW != nullptr) {
+      std::vector<glm::vec4> written(surfaces.size());
+      glGetNamedBufferSubData(origins.id(), 0, width * static_cast<GLsizeiptr>(sizeof(glm::vec4)),
+                              written.data());
+      originW->clear();
+      for (const glm::vec4& origin : written) originW->push_back(origin.w);
+    }
     std::vector<std::vector<bool>> result(surfaces.size(), std::vector<bool>(lights.size()));
     for (std::size_t p = 0; p < surfaces.size(); ++p) {
       for (std::size_t l = 0; l < lights.size(); ++l) {
@@ -132,6 +145,22 @@ TEST_F(ShadowRaySetup, APointLightGivesNoRaysBeyondItsRange) {
   EXPECT_FALSE(got[1][0]);
   EXPECT_TRUE(got[0][1]);  // the sun reaches both
   EXPECT_TRUE(got[1][1]);
+}
+
+// A row of 40 pixels: background, then 8 drawn, then background again. The first 16 make SIMD
+// groups of background alone (which skip the pass's work: include/skip_background.glsl), the
+// last ones share groups with drawn pixels; every background pixel says it has no surface and
+// gets no ray, every drawn one gets its ray.
+TEST_F(ShadowRaySetup, BackgroundPixelsGetNoRaysAloneOrBesideSurfaces) {
+  std::vector<Surface> surfaces(40, Surface{.drawn = false});
+  for (std::size_t p = 16; p < 24; ++p) surfaces[p] = Surface{};
+  surfaces[26] = Surface{};
+  std::vector<float> originW;
+  const std::vector<std::vector<bool>> got = rays(surfaces, {sunFromAbove()}, &originW);
+  for (std::size_t p = 0; p < surfaces.size(); ++p) {
+    EXPECT_EQ(got[p][0], surfaces[p].drawn) << p;
+    EXPECT_EQ(originW[p], surfaces[p].drawn ? 1.0F : 0.0F) << p;
+  }
 }
 
 }  // namespace
