@@ -15,6 +15,7 @@
 #include "vk/shader_module.hpp"
 #include "vk/shared_buffer.hpp"
 #include "vk/spirv_shaders.hpp"
+#include "vk/timestamp_queries.hpp"
 #include "vk/trace_recorder.hpp"
 #include "vk/vulkan_device.hpp"
 
@@ -365,13 +366,7 @@ void LightPathTracer::record(const TraceRecorder& recorder, const LightPathBatch
     runKernel(bounce_);
     stamp(2 * bounce + 1, Stage::eBottomOfPipe);
   }
-  if (queries_) {
-    commands.copyQueryPoolResults(
-        **queries_, 0, 2 + 2 * batch.bounces, stamps_->handle(), stamps_->offset(),
-        sizeof(std::uint64_t), ::vk::QueryResultFlagBits::e64 | ::vk::QueryResultFlagBits::eWait);
-    memoryBarrier(commands, Stage::eTransfer, Access::eTransferWrite, Stage::eHost,
-                  Access::eHostRead);
-  }
+  if (queries_) copyQueriesToHost(commands, **queries_, 0, 2 + 2 * batch.bounces, *stamps_, 0);
   if (interop) {
     // Release to GL, which reads after the vkDone semaphore (or once trace() has returned).
     transferVpls(commands, vpls_->handle(), kernels | Stage::eTransfer,

@@ -83,8 +83,8 @@ class LightPathTracer {
   ::vk::raii::CommandBuffers commands_;
   ::vk::raii::Fence fence_;
   std::optional<::vk::raii::QueryPool> queries_;
-  // The queries' results, copied there by the queue (lavapipe's query read waits for its whole
-  // queue: vk/timestamp_queries.hpp).
+  // The queries' results, copied there by the queue (copyQueriesToHost: lavapipe's query read
+  // waits for its whole queue).
   std::optional<DeviceBuffer> stamps_;
   double periodNs_ = 0.0;
   bool inFlight_ = false;

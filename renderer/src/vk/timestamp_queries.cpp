@@ -12,6 +12,18 @@ constexpr ::vk::DeviceSize kPairBytes = 2 * sizeof(std::uint64_t);
 
 }  // namespace
 
+void copyQueriesToHost(const ::vk::raii::CommandBuffer& commands, ::vk::QueryPool pool,
+                       std::uint32_t first, std::uint32_t count, const DeviceBuffer& results,
+                       ::vk::DeviceSize offset) {
+  commands.copyQueryPoolResults(pool, first, count, results.handle(), results.offset() + offset,
+                                sizeof(std::uint64_t),
+                                ::vk::QueryResultFlagBits::e64 | ::vk::QueryResultFlagBits::eWait);
+  const ::vk::MemoryBarrier toHost{.srcAccessMask = ::vk::AccessFlagBits::eTransferWrite,
+                                   .dstAccessMask = ::vk::AccessFlagBits::eHostRead};
+  commands.pipelineBarrier(::vk::PipelineStageFlagBits::eTransfer,
+                           ::vk::PipelineStageFlagBits::eHost, {}, toHost, {}, {});
+}
+
 TimestampQueries::TimestampQueries(const VulkanDevice& device, std::uint32_t pairs)
     : periodNs_(device.limits().timestampPeriodNs) {
   if (!device.limits().timestamps) return;
@@ -37,13 +49,7 @@ void TimestampQueries::begin(const ::vk::raii::CommandBuffer& commands, std::uin
 void TimestampQueries::end(const ::vk::raii::CommandBuffer& commands, std::uint32_t pair) const {
   if (!pool_) return;
   commands.writeTimestamp(::vk::PipelineStageFlagBits::eBottomOfPipe, **pool_, 2 * pair + 1);
-  commands.copyQueryPoolResults(**pool_, 2 * pair, 2, results_->handle(),
-                                results_->offset() + pair * kPairBytes, sizeof(std::uint64_t),
-                                ::vk::QueryResultFlagBits::e64 | ::vk::QueryResultFlagBits::eWait);
-  const ::vk::MemoryBarrier toHost{.srcAccessMask = ::vk::AccessFlagBits::eTransferWrite,
-                                   .dstAccessMask = ::vk::AccessFlagBits::eHostRead};
-  commands.pipelineBarrier(::vk::PipelineStageFlagBits::eTransfer,
-                           ::vk::PipelineStageFlagBits::eHost, {}, toHost, {}, {});
+  copyQueriesToHost(commands, **pool_, 2 * pair, 2, *results_, pair * kPairBytes);
 }
 
 double TimestampQueries::elapsedMs(std::uint32_t pair) const {

@@ -17,6 +17,13 @@ namespace lgh::vk {
 
 class VulkanDevice;
 
+// Records the queue's copy of queries [first, first + count) of `pool` into `results` from `offset`
+// (a uint64 each, waited for on the device), and the barrier that makes it visible to the host
+// once the submission's fence has signalled.
+void copyQueriesToHost(const ::vk::raii::CommandBuffer& commands, ::vk::QueryPool pool,
+                       std::uint32_t first, std::uint32_t count, const DeviceBuffer& results,
+                       ::vk::DeviceSize offset);
+
 class TimestampQueries {
  public:
   TimestampQueries(const VulkanDevice& device, std::uint32_t pairs);
