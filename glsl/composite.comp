@@ -51,10 +51,8 @@ void main() {
 #ifdef LGH_SCENE_TARGET
   if (inFrame) imageStore(uScene, pixel, covered ? linearColor(pixel) : uBackground);
 #else
-  if (!anyInvocationCovers(covered)) {
-    if (inFrame) storeBackground(outputTarget(pixel));
-    return;
-  }
+  // The output holds the background already (include/frame_output.glsl).
+  if (!anyInvocationCovers(covered)) return;
   if (!inFrame) return;
   if (covered) {
     storeOutput(outputTarget(pixel), linearColor(pixel));

@@ -7,8 +7,9 @@
 // With LGH_POINT_LIGHT_RAYS (the shadowed brute-force reference): one ray to each of
 // uRaysPerPixel point lights of the PointLight SSBO from uFirstLight on, at their exact positions.
 // Inputs: G-buffer position and normal, lights SSBO, LGH samples. Outputs: origins, targets.
-// Invocation groups of background pixels only write that they have no rays
-// (include/skip_background.glsl).
+// The pass clears the origins first (w = 0: no surface, no rays), so invocation groups of
+// background pixels write nothing (include/skip_background.glsl); the tracer reads no target of a
+// pixel without a surface.
 
 #include "include/skip_background.glsl"
 #include "include/gbuffer.glsl"
@@ -110,27 +111,15 @@ vec4 directTarget(int light, int sampleIndex, vec3 origin, uint pixelSeed) {
   return vec4(diskPoint(l.positionType.xyz, size, origin, u), 1.0);
 }
 
-// A pixel without a surface: origin w = 0 says so to the tracer.
-void writeNoRays(uint pixelIndex, uint firstTarget) {
-  origins[pixelIndex] = vec4(0.0);
-  for (int ray = 0; ray < uRaysPerPixel; ++ray) targets[firstTarget + uint(ray)] = NO_RAY;
-}
-
 void main() {
   ivec2 pixel = balancedPixel();
   bool inFrame = all(lessThan(pixel, uFrameSize));
   uint pixelIndex = uint(pixel.y) * uint(uFrameSize.x) + uint(pixel.x);
   uint firstTarget = pixelIndex * uint(uRaysPerPixel);
-  if (!anyInvocationCovers(inFrame && surfaceCovered(pixel))) {
-    if (inFrame) writeNoRays(pixelIndex, firstTarget);
-    return;
-  }
+  if (!anyInvocationCovers(inFrame && surfaceCovered(pixel))) return;
   if (!inFrame) return;
   SurfacePoint s;
-  if (!readSurface(pixel, s)) {
-    writeNoRays(pixelIndex, firstTarget);
-    return;
-  }
+  if (!readSurface(pixel, s)) return;  // its origin stays cleared
   vec3 origin = s.position + s.normal * uSurfaceOffset;
   origins[pixelIndex] = vec4(origin, 1.0);
 #ifdef LGH_POINT_LIGHT_RAYS

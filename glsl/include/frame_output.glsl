@@ -3,7 +3,9 @@
 // (LGH_OUTPUT_FORMAT: rgba16f or rgba32f), with the rows turned over (the first row GL stores is
 // the image's top row, so no one flips them on the CPU). Written by the composite pass, and by
 // the direct lighting pass of frames that have nothing to composite (LGH_FINAL_OUTPUT).
-// Image unit LGH_IMAGE_OUTPUT.
+// Image unit LGH_IMAGE_OUTPUT. The pass clears the image to the background before it runs
+// (bindFrameOutput in composite_pass.cpp), so invocation groups of background pixels store
+// nothing: on a CPU rasteriser an image store is a scalar loop over the SIMD lanes.
 #ifndef LGH_FRAME_OUTPUT_GLSL
 #define LGH_FRAME_OUTPUT_GLSL
 

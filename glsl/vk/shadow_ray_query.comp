@@ -2,6 +2,7 @@
 // Shadow rays by ray query: one invocation per pixel, 8 x 8 pixels per work group.
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_vote : require
 
 #include "include/shadow_rays.glsl"
 
@@ -18,4 +19,12 @@ bool traceShadowRay(ShadowRay ray) {
   return rayQueryGetIntersectionTypeEXT(query, true) == gl_RayQueryCommittedIntersectionNoneEXT;
 }
 
-void main() { traceShadowPixel(uvec2(balancedPixel())); }
+// A subgroup of pixels without a surface (origin w = 0) writes nothing: their visibility words
+// were filled with zeros before the launch (TraceBatch::zeroed). On a CPU device a subgroup is one
+// SIMD vector, and a branch on its vote is a real branch (glsl/include/skip_background.glsl).
+void main() {
+  uvec2 pixel = uvec2(balancedPixel());
+  bool inBatch = pixel.x < trace.width && pixel.y < trace.height;
+  bool surface = inBatch && origins[pixel.y * trace.width + pixel.x].w > 0.0;
+  if (subgroupAny(surface)) traceShadowPixel(pixel);
+}

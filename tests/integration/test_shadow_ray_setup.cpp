@@ -42,10 +42,12 @@ class ShadowRaySetup : public ::testing::Test {
   static void SetUpTestSuite() { context = lgh::GlContext::create(lgh::test::rendererOptions()); }
   static void TearDownTestSuite() { context.reset(); }
 
-  // The targets the pass writes for `surfaces` (one row of pixels) and `lights`, every light
-  // shadowed with one ray: per pixel, per light, whether it got a ray (target w >= 0). The
-  // origins' w go to `originW` when given (0: no surface). Both buffers start out holding 9s, so
-  // that a pixel the pass leaves alone shows.
+  // The rays the pass sets up for `surfaces` (one row of pixels) and `lights`, every light
+  // shadowed with one ray, as the tracer reads them (glsl/vk/include/shadow_rays.glsl): per
+  // pixel, per light, whether it got a ray, that is its origin has a surface (w > 0) and its
+  // target w >= 0; a pixel without a surface has no rays whatever its targets hold (the pass
+  // leaves them alone). The origins' w go to `originW` when given (0: no surface). Both buffers
+  // start out holding 9s, so that a pixel whose origin the pass leaves alone shows.
   static std::vector<std::vector<bool>> rays(const std::vector<Surface>& surfaces,
                                              const std::vector<lgh::LightDesc>& lights,
                                              std::vector<float>* originW = nullptr) {
@@ -88,17 +90,17 @@ class ShadowRaySetup : public ::testing::Test {
     std::vector<glm::vec4> written(static_cast<std::size_t>(rayCount));
     glGetNamedBufferSubData(targets.id(), 0, rayCount * static_cast<GLsizeiptr>(sizeof(glm::vec4)),
                             written.data());
+    std::vector<glm::vec4> writtenOrigins(surfaces.size());
+    glGetNamedBufferSubData(origins.id(), 0, width * static_cast<GLsizeiptr>(sizeof(glm::vec4)),
+                            writtenOrigins.data());
     if (originW != nullptr) {
-      std::vector<glm::vec4> written(surfaces.size());
-      glGetNamedBufferSubData(origins.id(), 0, width * static_cast<GLsizeiptr>(sizeof(glm::vec4)),
-                              written.data());
       originW->clear();
-      for (const glm::vec4& origin : written) originW->push_back(origin.w);
+      for (const glm::vec4& origin : writtenOrigins) originW->push_back(origin.w);
     }
     std::vector<std::vector<bool>> result(surfaces.size(), std::vector<bool>(lights.size()));
     for (std::size_t p = 0; p < surfaces.size(); ++p) {
       for (std::size_t l = 0; l < lights.size(); ++l) {
-        result[p][l] = written[p * lights.size() + l].w >= 0.0F;
+        result[p][l] = writtenOrigins[p].w > 0.0F && written[p * lights.size() + l].w >= 0.0F;
       }
     }
     return result;
@@ -149,8 +151,9 @@ TEST_F(ShadowRaySetup, APointLightGivesNoRaysBeyondItsRange) {
 
 // A row of 40 pixels: background, then 8 drawn, then background again. The first 16 make SIMD
 // groups of background alone (which skip the pass's work: include/skip_background.glsl), the
-// last ones share groups with drawn pixels; every background pixel says it has no surface and
-// gets no ray, every drawn one gets its ray.
+// last ones share groups with drawn pixels; every background pixel's origin says it has no
+// surface (the pass clears the origins first: they start out as 9s here), every drawn one gets
+// its ray.
 TEST_F(ShadowRaySetup, BackgroundPixelsGetNoRaysAloneOrBesideSurfaces) {
   std::vector<Surface> surfaces(40, Surface{.drawn = false});
   for (std::size_t p = 16; p < 24; ++p) surfaces[p] = Surface{};

@@ -1,5 +1,7 @@
 #include "passes/composite_pass.hpp"
 
+#include <array>
+
 #include "gl/shader_library.hpp"
 #include "gl/slots.hpp"
 #include "image/image_common.hpp"
@@ -75,17 +77,38 @@ gl::Program buildCompositeProgram(OutputPixels pixels, bool toScene) {
   return buildFrameOutputProgram("composite.comp", "", pixels);
 }
 
-void setBackground(GLuint program, const OutputSettings& output, OutputPixels pixels) {
+// The background as the output holds it: linear (alpha 0 when transparent, the colour scaled by
+// it) and, for display codes, that pixel through the CPU's display transform, which the GPU's
+// follows step for step.
+struct Background {
+  FloatImage linear;
+  std::array<GLuint, 4> codes{};
+};
+
+Background backgroundOf(const OutputSettings& output) {
   const float alpha = output.transparentBackground ? 0.0F : 1.0F;
   const auto& bg = output.background;
-  const FloatImage background{1, 1, {bg[0] * alpha, bg[1] * alpha, bg[2] * alpha, alpha}};
+  Background background{{1, 1, {bg[0] * alpha, bg[1] * alpha, bg[2] * alpha, alpha}}, {}};
+  const Image8 codes = toDisplay8(background.linear, output.toneMap, output.exposure, true);
+  for (std::size_t i = 0; i < background.codes.size(); ++i) background.codes[i] = codes.pixels[i];
+  return background;
+}
+
+void setBackground(GLuint program, const Background& background) {
   glProgramUniform4fv(program, glGetUniformLocation(program, "uBackground"), 1,
-                      background.rgba.data());
-  if (pixels != OutputPixels::Display8) return;
-  // One pixel through the CPU's display transform, which the GPU's follows step for step.
-  const Image8 codes = toDisplay8(background, output.toneMap, output.exposure, true);
-  glProgramUniform4ui(program, glGetUniformLocation(program, "uBackgroundCodes"), codes.pixels[0],
-                      codes.pixels[1], codes.pixels[2], codes.pixels[3]);
+                      background.linear.rgba.data());
+  glProgramUniform4uiv(program, glGetUniformLocation(program, "uBackgroundCodes"), 1,
+                       background.codes.data());
+}
+
+// The whole output to the background, so that the pass stores its surfaces' pixels only
+// (include/frame_output.glsl).
+void clearToBackground(GLuint texture, OutputPixels pixels, const Background& background) {
+  if (pixels == OutputPixels::Display8) {
+    glClearTexImage(texture, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, background.codes.data());
+  } else {
+    glClearTexImage(texture, 0, GL_RGBA, GL_FLOAT, background.linear.rgba.data());
+  }
 }
 
 std::string frameOutputDefines(OutputPixels pixels) {
@@ -113,9 +136,11 @@ gl::Program buildFrameOutputProgram(const char* computeShader, const std::string
 void bindFrameOutput(GLuint program, const OutputSettings& output, OutputPixels pixels,
                      FrameTargets& targets) {
   setDisplayUniforms(program, output, targets.height);
-  setBackground(program, output, pixels);
-  glBindImageTexture(LGH_IMAGE_OUTPUT, targets.output(pixels).texture.id(), 0, GL_FALSE, 0,
-                     GL_WRITE_ONLY, imageFormat(pixels));
+  const Background background = backgroundOf(output);
+  setBackground(program, background);
+  const GLuint texture = targets.output(pixels).texture.id();
+  clearToBackground(texture, pixels, background);
+  glBindImageTexture(LGH_IMAGE_OUTPUT, texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, imageFormat(pixels));
 }
 
 const gl::Program& CompositePass::program(OutputPixels pixels, bool toScene) {
@@ -151,7 +176,7 @@ void CompositePass::dispatch(const OutputSettings& output, OutputPixels pixels, 
   glBindTextures(0, 3, textures);
   if (toScene) {
     glProgramUniform1i(program, glGetUniformLocation(program, "uHeight"), targets.height);
-    setBackground(program, output, OutputPixels::LinearFloat);
+    setBackground(program, backgroundOf(output));
     glBindImageTexture(LGH_IMAGE_OUTPUT, targets.sceneLinear().texture.id(), 0, GL_FALSE, 0,
                        GL_WRITE_ONLY, GL_RGBA32F);
   } else {

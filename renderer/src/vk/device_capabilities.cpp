@@ -56,6 +56,15 @@ void requireBasics(const ::vk::raii::PhysicalDevice& device, const ExtensionList
   }
 }
 
+// The ray-query shadow shader votes across a subgroup (glsl/vk/shadow_ray_query.comp).
+bool computeSubgroupsVote(const ::vk::raii::PhysicalDevice& device) {
+  const auto chain = device.getProperties2<::vk::PhysicalDeviceProperties2,
+                                           ::vk::PhysicalDeviceSubgroupProperties>();
+  const auto& subgroups = chain.get<::vk::PhysicalDeviceSubgroupProperties>();
+  return (subgroups.supportedStages & ::vk::ShaderStageFlagBits::eCompute) &&
+         (subgroups.supportedOperations & ::vk::SubgroupFeatureFlagBits::eVote);
+}
+
 }  // namespace
 
 DeviceCapabilities probeCapabilities(const ::vk::raii::PhysicalDevice& device) {
@@ -67,7 +76,7 @@ DeviceCapabilities probeCapabilities(const ::vk::raii::PhysicalDevice& device) {
   if (!supported.bufferDeviceAddress()) unavailable(device, "no bufferDeviceAddress");
   if (!supported.accelerationStructure()) unavailable(device, "no accelerationStructure");
   DeviceCapabilities capabilities;
-  capabilities.rayQuery = supported.rayQuery();
+  capabilities.rayQuery = supported.rayQuery() && computeSubgroupsVote(device);
   capabilities.rayTracingPipeline = supported.rayTracingPipeline();
   if (!capabilities.rayQuery && !capabilities.rayTracingPipeline) {
     unavailable(device, "neither ray queries nor ray-tracing pipelines");

@@ -122,7 +122,9 @@ void HitTracer::trace(const AccelerationScene& scene, TracePath path, const HitB
                     .constants = constantBytes(constants),
                     .launch = hitBatchLaunch(shape),
                     .transport = buffers_.shared().transport,
-                    .buffers = shared},
+                    .buffers = shared,
+                    .zeroed = {},
+                    .zeroedBytes = 0},
                    useSemaphores ? &*semaphores_ : nullptr);
   if (!useSemaphores) submissions_.retire(slot);
 }

@@ -34,17 +34,28 @@ void recordBarriersBeforeTrace(const ::vk::raii::CommandBuffer& commands,
   const ::vk::MemoryBarrier sceneBuilt{.srcAccessMask = Access::eAccelerationStructureWriteKHR,
                                        .dstAccessMask = Access::eAccelerationStructureReadKHR};
   if (scope.transport == Transport::Interop) {
-    // Acquire: what GL wrote (made available by GL's semaphore signal or glFinish).
-    commands.pipelineBarrier(Stage::eAccelerationStructureBuildKHR | Stage::eTopOfPipe,
-                             scope.traceStage, {}, sceneBuilt,
-                             ownershipTransfer(scope, VK_QUEUE_FAMILY_EXTERNAL, scope.queueFamily,
-                                               {}, Access::eShaderRead | Access::eShaderWrite),
-                             nullptr);
+    // Acquire: what GL wrote (made available by GL's semaphore signal or glFinish), for the
+    // trace and for a fill before it.
+    const ::vk::PipelineStageFlags users =
+        scope.fillsFirst ? scope.traceStage | Stage::eTransfer : scope.traceStage;
+    const ::vk::AccessFlags access =
+        scope.fillsFirst ? Access::eShaderRead | Access::eShaderWrite | Access::eTransferWrite
+                         : Access::eShaderRead | Access::eShaderWrite;
+    commands.pipelineBarrier(
+        Stage::eAccelerationStructureBuildKHR | Stage::eTopOfPipe, users, {}, sceneBuilt,
+        ownershipTransfer(scope, VK_QUEUE_FAMILY_EXTERNAL, scope.queueFamily, {}, access), nullptr);
   } else {
     // The host's writes to the staging buffers are visible to the submission already.
     commands.pipelineBarrier(Stage::eAccelerationStructureBuildKHR, scope.traceStage, {},
                              sceneBuilt, nullptr, nullptr);
   }
+}
+
+void recordFillBeforeTrace(const ::vk::raii::CommandBuffer& commands,
+                           const TraceBarrierScope& scope) {
+  const ::vk::MemoryBarrier filled{.srcAccessMask = Access::eTransferWrite,
+                                   .dstAccessMask = Access::eShaderRead | Access::eShaderWrite};
+  commands.pipelineBarrier(Stage::eTransfer, scope.traceStage, {}, filled, nullptr, nullptr);
 }
 
 void recordBarriersAfterTrace(const ::vk::raii::CommandBuffer& commands,

@@ -17,10 +17,14 @@ struct TraceBarrierScope {
   Transport transport = Transport::Staging;
   std::uint32_t queueFamily = 0;
   std::span<const ::vk::Buffer> buffers;  // the buffers shared with GL
+  bool fillsFirst = false;                // a transfer fills one of them before the trace
 };
 
 void recordBarriersBeforeTrace(const ::vk::raii::CommandBuffer& commands,
                                const TraceBarrierScope& scope);
+// Between a fill of a shared buffer (TraceBatch::zeroed) and the trace that writes the rest.
+void recordFillBeforeTrace(const ::vk::raii::CommandBuffer& commands,
+                           const TraceBarrierScope& scope);
 void recordBarriersAfterTrace(const ::vk::raii::CommandBuffer& commands,
                               const TraceBarrierScope& scope);
 

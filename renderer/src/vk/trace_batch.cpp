@@ -10,13 +10,19 @@ namespace {
 void record(const TraceSubmissions& submissions, std::uint32_t slot, std::uint32_t queueFamily,
             const TraceBatch& batch) {
   const ::vk::raii::CommandBuffer& commands = submissions.commands(slot);
+  const bool zeroes = batch.zeroedBytes > 0;
   const TraceBarrierScope scope{.traceStage = batch.recorder->stage(),
                                 .transport = batch.transport,
                                 .queueFamily = queueFamily,
-                                .buffers = batch.buffers};
+                                .buffers = batch.buffers,
+                                .fillsFirst = zeroes};
   commands.begin({.flags = ::vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
   submissions.timestamps().begin(commands, slot);
   recordBarriersBeforeTrace(commands, scope);
+  if (zeroes) {
+    commands.fillBuffer(batch.zeroed, 0, batch.zeroedBytes, 0);
+    recordFillBeforeTrace(commands, scope);
+  }
   batch.recorder->record(commands, batch.set, batch.constants, batch.launch);
   recordBarriersAfterTrace(commands, scope);
   submissions.timestamps().end(commands, slot);

@@ -26,6 +26,11 @@ struct TraceBatch {
   TraceLaunch launch;
   Transport transport = Transport::Staging;
   std::span<const ::vk::Buffer> buffers;  // shared with GL
+  // A buffer (one of `buffers`) that the launch writes only in part: its first `zeroedBytes` are
+  // filled with zeros before it (the shadow rays' visibility, whose words of pixels without a
+  // surface the ray-query shader leaves alone). 0: none.
+  ::vk::Buffer zeroed;
+  ::vk::DeviceSize zeroedBytes = 0;
 };
 
 // `slot`: acquired from `submissions`. `semaphores`: null for a batch without them.

@@ -254,13 +254,17 @@ class VulkanShadowTracer final : public ShadowTracer {
     const TracePushConstants constants = pushConstants(shape, params);
     const std::array<::vk::Buffer, 3> shared{buffers.origins(), buffers.targets(),
                                              buffers.visibility()};
+    // The ray-query shader skips SIMD groups of pixels without a surface (their words stay 0).
+    const bool skipsBackground = path == TracePath::RayQuery;
     submitTraceBatch(submissions_, slot, device_->queueFamily(),
                      {.recorder = &recorder,
                       .set = layout_.set(slot),
                       .constants = constantBytes(constants),
                       .launch = {.width = shape.width, .height = shape.height},
                       .transport = buffers.shared().transport,
-                      .buffers = shared},
+                      .buffers = shared,
+                      .zeroed = buffers.visibility(),
+                      .zeroedBytes = skipsBackground ? rayBatchBytes(shape).visibility : 0},
                      useSemaphores ? &*semaphores_[lane] : nullptr);
     return slot;
   }
