@@ -100,7 +100,7 @@ void FramePipeline::finishDraw(const RemainingPasses& remaining, gl::GpuTimer& t
 void FramePipeline::directLighting(FrameSet& set, const RemainingPasses& remaining,
                                    gl::GpuTimer& timer, bool toOutput) {
   set.shadows.awaitVisibility();
-  gl::ScopedGpuPass pass(timer, "direct lighting");
+  gl::ScopedGpuPass pass(timer, "direct lighting", gl::GpuWork::Compute);
   const DirectLightingInputs inputs{
       set.lightBuffer.id(), remaining.lightCount, set.shadows.layout(), set.shadows.visibility(),
       remaining.ambient,    remaining.brdf,       remaining.emission};
@@ -194,13 +194,13 @@ std::optional<RemainingPasses> FramePipeline::drawInto(FrameSet& set, const Rend
       shadows.filterLgh(shadowSettings.filterIterations, camera, targets, timer);
   if (probe != nullptr && lgh.enabled) finishProbe(shadowRatio, camera, *probe);
   if (!blends) {
-    gl::ScopedGpuPass pass(timer, "composite");
+    gl::ScopedGpuPass pass(timer, "composite", gl::GpuWork::Compute);
     compositePass_.run(output, pixels, lgh.enabled, shadowRatio, targets);
   } else {
     // Blending happens in linear light: composite into the scene target, blend the surfaces over
     // it, then the display pass writes what is read back.
     {
-      gl::ScopedGpuPass pass(timer, "composite");
+      gl::ScopedGpuPass pass(timer, "composite", gl::GpuWork::Compute);
       compositePass_.runToScene(output, lgh.enabled, shadowRatio, targets);
     }
     {
@@ -314,8 +314,9 @@ void FramePipeline::finishProbe(GLuint shadowRatio, const CameraMatrices& camera
 
 void FramePipeline::pack(OutputPixels pixels, FramePixels::Layout layout, GLuint packBuffer,
                          gl::GpuTimer& timer, int set) {
-  gl::ScopedGpuPass pass(timer, "readback");
-  pixelPackPass_.run(frameSet(set).targets, pixels, layout, packBuffer);
+  FrameTargets& targets = frameSet(set).targets;
+  gl::ScopedGpuPass pass(timer, "readback", pixelPackPass_.work(targets, layout));
+  pixelPackPass_.run(targets, pixels, layout, packBuffer);
 }
 
 void FramePipeline::render(const RenderRequest& request, const CachedScene& cached,

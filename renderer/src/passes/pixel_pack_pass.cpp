@@ -76,7 +76,7 @@ void PixelPackPass::run(const FrameTargets& targets, OutputPixels pixels,
     copyByDriver(targets, pixels, frame, packBuffer);  // the target's own format: a plain copy
     return;
   }
-  if (bufferBytes(frame) > maxBlockBytes_) {
+  if (!packsByShader(frame)) {
     if (!warnedLargeFrame_) {
       spdlog::info(
           "renderer: frames over {} MB are read back by glGetTextureImage (the "
@@ -88,6 +88,11 @@ void PixelPackPass::run(const FrameTargets& targets, OutputPixels pixels,
     return;
   }
   packDisplayCodes(targets, pixels, frame, packBuffer);
+}
+
+gl::GpuWork PixelPackPass::work(const FrameTargets& targets, FramePixels::Layout layout) const {
+  const FramePixels frame{targets.width, targets.height, layout, nullptr};
+  return packsByShader(frame) ? gl::GpuWork::Compute : gl::GpuWork::Any;
 }
 
 void PixelPackPass::packDisplayCodes(const FrameTargets& targets, OutputPixels pixels,

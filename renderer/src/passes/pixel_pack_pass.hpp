@@ -14,6 +14,7 @@
 #include <cstddef>
 
 #include "gl/gl_objects.hpp"
+#include "gl/gpu_timer.hpp"
 #include "lgh/frame_pixels.hpp"
 #include "passes/frame_targets.hpp"
 
@@ -38,8 +39,14 @@ class PixelPackPass {
   // bytes are there once a fence inserted after it has signalled.
   void run(const FrameTargets& targets, OutputPixels pixels, FramePixels::Layout layout,
            GLuint packBuffer);
+  // What run() issues for such a frame: a compute dispatch, or a copy by the driver (which may
+  // draw).
+  gl::GpuWork work(const FrameTargets& targets, FramePixels::Layout layout) const;
 
  private:
+  bool packsByShader(const FramePixels& frame) const {
+    return frame.isDisplay() && bufferBytes(frame) <= maxBlockBytes_;
+  }
   void packDisplayCodes(const FrameTargets& targets, OutputPixels pixels, const FramePixels& frame,
                         GLuint packBuffer);
 

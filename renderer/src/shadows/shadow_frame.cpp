@@ -111,7 +111,7 @@ void ShadowFrame::traceRays(const ShadowFrameInputs& inputs, vk::ShadowTracer& t
   buffers_ = transport.prepare(shape);
   const float offset = surfaceOffset(scene.scene);
   {
-    gl::ScopedGpuPass pass(timer, "shadow ray setup");
+    gl::ScopedGpuPass pass(timer, "shadow ray setup", gl::GpuWork::Compute);
     setup().run({layout_, inputs.lights, inputs.lghSamples, offset, inputs.seed ^ kDirectSeedSalt},
                 frame, buffers_.origins, buffers_.targets);
   }
