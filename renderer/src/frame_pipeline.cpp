@@ -314,9 +314,8 @@ void FramePipeline::finishProbe(GLuint shadowRatio, const CameraMatrices& camera
 
 void FramePipeline::pack(OutputPixels pixels, FramePixels::Layout layout, GLuint packBuffer,
                          gl::GpuTimer& timer, int set) {
-  FrameTargets& targets = frameSet(set).targets;
-  gl::ScopedGpuPass pass(timer, "readback", pixelPackPass_.work(targets, layout));
-  pixelPackPass_.run(targets, pixels, layout, packBuffer);
+  gl::ScopedGpuPass pass(timer, "readback", gl::GpuWork::Compute);
+  pixelPackPass_.run(frameSet(set).targets, pixels, layout, packBuffer);
 }
 
 void FramePipeline::render(const RenderRequest& request, const CachedScene& cached,

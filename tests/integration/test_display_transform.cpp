@@ -7,18 +7,24 @@
 // Both count the same thresholds, so a channel may differ only where float arithmetic on the two
 // sides lands a value across one threshold: by one step at most. Without a tone map at exposure 1
 // nothing is computed before the count, so the codes must be equal.
+// The pixel pack pass's two shapes (the shader's, the GPUs', and the driver's copy, the CPU
+// rasterizers') give the same bytes, those of the output target's rows with or without alpha, at
+// sizes whose bytes end inside a word, RGB and RGBA.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "context/gl_context.hpp"
 #include "gl/gl_objects.hpp"
 #include "gl/shader_library.hpp"
 #include "gl/slots.hpp"
@@ -284,7 +290,7 @@ TEST_F(DisplayTransform, EveryOutputLayoutReadsBackTopRowFirst) {
   }
 }
 
-// The pixel pack pass's work groups cover every invocation (a word, or four pixels, each) in rows
+// The pixel pack pass's work groups cover every invocation (a word each) in rows
 // within GL's group count limit: one group more than the guaranteed 65,535 takes two rows.
 TEST(PixelPackDispatch, CoversEveryInvocationInRowsWithinTheLimit) {
   constexpr unsigned kLimit = 65535;
@@ -300,6 +306,44 @@ TEST(PixelPackDispatch, CoversEveryInvocationInRowsWithinTheLimit) {
   }
   EXPECT_EQ(lgh::PixelPackPass::dispatchFor(kGroup * kLimit + 1, kLimit).y, 2U);
   EXPECT_EQ(lgh::PixelPackPass::dispatchFor(0, kLimit).x, 0U);
+}
+
+// The bytes each pack shape writes for an output target of random codes.
+std::vector<std::uint8_t> packed(lgh::PackShape shape, const lgh::FrameTargets& targets,
+                                 lgh::FramePixels::Layout layout) {
+  const lgh::FramePixels frame{targets.width, targets.height, layout, nullptr};
+  lgh::gl::Buffer buffer;
+  const std::vector<std::uint8_t> marks(lgh::PixelPackPass::bufferBytes(frame), 0xA5);
+  glNamedBufferStorage(buffer.id(), static_cast<GLsizeiptr>(marks.size()), marks.data(), 0);
+  lgh::PixelPackPass pass(shape);
+  pass.run(targets, lgh::OutputPixels::Display8, layout, buffer.id());
+  glFinish();
+  std::vector<std::uint8_t> bytes(frame.size());
+  glGetNamedBufferSubData(buffer.id(), 0, static_cast<GLsizeiptr>(bytes.size()), bytes.data());
+  return bytes;
+}
+
+TEST(PixelPack, BothShapesWriteTheTargetsRowsWithOrWithoutAlpha) {
+  auto context = lgh::GlContext::create(lgh::test::rendererOptions());
+  std::mt19937 random(7);
+  for (const auto [width, height] : {std::pair{1, 1}, {5, 3}, {13, 7}, {37, 19}, {256, 256}}) {
+    lgh::FrameTargets targets;
+    targets.resize(width, height);
+    std::vector<std::uint8_t> codes(static_cast<std::size_t>(width) * height * 4);
+    for (std::uint8_t& code : codes) code = static_cast<std::uint8_t>(random());
+    glTextureSubImage2D(targets.output(lgh::OutputPixels::Display8).texture.id(), 0, 0, 0, width,
+                        height, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, codes.data());
+    for (const auto layout : {lgh::FramePixels::Layout::Rgb8, lgh::FramePixels::Layout::Rgba8}) {
+      const std::size_t channels = layout == lgh::FramePixels::Layout::Rgb8 ? 3 : 4;
+      std::vector<std::uint8_t> expected;
+      for (std::size_t i = 0; i < codes.size(); ++i) {
+        if (i % 4 < channels) expected.push_back(codes[i]);
+      }
+      const std::string size = fmt::format("{}x{} {} channels", width, height, channels);
+      EXPECT_EQ(packed(lgh::PackShape::Shader, targets, layout), expected) << size;
+      EXPECT_EQ(packed(lgh::PackShape::DriverCopy, targets, layout), expected) << size;
+    }
+  }
 }
 
 }  // namespace

@@ -20,7 +20,8 @@
 
 namespace lgh::gl {
 
-// What a timed pass issues: draws (or anything) or compute dispatches and copies only.
+// What a timed pass issues: draws (or anything), or compute dispatches and copies only (buffer
+// clears, texture reads into buffers), which Mesa's CPU rasterisers carry out before returning.
 enum class GpuWork { Any, Compute };
 
 class GpuTimer {

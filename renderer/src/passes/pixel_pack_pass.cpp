@@ -12,7 +12,6 @@ namespace lgh {
 namespace {
 
 constexpr std::size_t kWordBytes = 4;
-constexpr std::size_t kPixelsPerInvocation = 4;  // LGH_PACK_FOUR_PIXELS in glsl/pixel_pack.comp
 
 std::size_t wordsFor(std::size_t bytes) { return (bytes + kWordBytes - 1) / kWordBytes; }
 
@@ -44,12 +43,23 @@ void copyByDriver(const FrameTargets& targets, OutputPixels pixels, const FrameP
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
 }
 
+bool packsByShader(PackShape shape) {
+  switch (shape) {
+    case PackShape::Shader:
+      return true;
+    case PackShape::DriverCopy:
+      return false;
+    case PackShape::ForDevice:
+      break;
+  }
+  return !gl::softwareRasterizer();
+}
+
 }  // namespace
 
-PixelPackPass::PixelPackPass()
-    : fourPixelsPerInvocation_(gl::softwareRasterizer()),
-      program_(gl::buildComputeProgram(
-          "pixel_pack.comp", fourPixelsPerInvocation_ ? "#define LGH_PACK_FOUR_PIXELS 1\n" : "")) {
+PixelPackPass::PixelPackPass(PackShape shape)
+    : byShader_(packsByShader(shape)),
+      program_(byShader_ ? gl::buildComputeProgram("pixel_pack.comp") : gl::Program::empty()) {
   GLint maxGroupsX = 65535;
   glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &maxGroupsX);
   maxGroupsX_ = static_cast<unsigned>(std::max(maxGroupsX, 1));
@@ -72,11 +82,12 @@ std::size_t PixelPackPass::bufferBytes(const FramePixels& pixels) {
 void PixelPackPass::run(const FrameTargets& targets, OutputPixels pixels,
                         FramePixels::Layout layout, GLuint packBuffer) {
   const FramePixels frame{targets.width, targets.height, layout, nullptr};
-  if (!frame.isDisplay()) {
-    copyByDriver(targets, pixels, frame, packBuffer);  // the target's own format: a plain copy
+  if (!frame.isDisplay() || !byShader_) {
+    // The target's own format, or display codes where the driver's copy is the faster shape.
+    copyByDriver(targets, pixels, frame, packBuffer);
     return;
   }
-  if (!packsByShader(frame)) {
+  if (bufferBytes(frame) > maxBlockBytes_) {
     if (!warnedLargeFrame_) {
       spdlog::info(
           "renderer: frames over {} MB are read back by glGetTextureImage (the "
@@ -88,11 +99,6 @@ void PixelPackPass::run(const FrameTargets& targets, OutputPixels pixels,
     return;
   }
   packDisplayCodes(targets, pixels, frame, packBuffer);
-}
-
-gl::GpuWork PixelPackPass::work(const FrameTargets& targets, FramePixels::Layout layout) const {
-  const FramePixels frame{targets.width, targets.height, layout, nullptr};
-  return packsByShader(frame) ? gl::GpuWork::Compute : gl::GpuWork::Any;
 }
 
 void PixelPackPass::packDisplayCodes(const FrameTargets& targets, OutputPixels pixels,
@@ -110,10 +116,7 @@ void PixelPackPass::packDisplayCodes(const FrameTargets& targets, OutputPixels p
   glBindTextureUnit(0, targets.outputs[static_cast<int>(pixels)].texture.id());
   glBindBufferRange(GL_SHADER_STORAGE_BUFFER, LGH_BIND_PACKED_PIXELS, packBuffer, 0,
                     static_cast<GLsizeiptr>(words * kWordBytes));
-  const std::size_t invocations =
-      fourPixelsPerInvocation_ ? (pixelCount + kPixelsPerInvocation - 1) / kPixelsPerInvocation
-                               : words;
-  const Dispatch groups = dispatchFor(invocations, maxGroupsX_);
+  const Dispatch groups = dispatchFor(words, maxGroupsX_);
   glDispatchCompute(groups.x, groups.y, 1);
   // The buffer is mapped persistently: the CPU reads it once the frame's fence has signalled.
   glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
