@@ -9,6 +9,8 @@
 // comparison strips of docs/GALLERY.md (scripts/material-gallery).
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -26,6 +28,7 @@
 
 #include "context/gl_context.hpp"
 #include "frame_pipeline.hpp"
+#include "gl/software_rasterizer.hpp"
 #include "lgh/testing/image_metrics.hpp"
 #include "scene/procedural_textures.hpp"
 #include "scene/scene_cache.hpp"
@@ -490,6 +493,45 @@ TEST_F(MaterialTechniques, PrecompressedWithoutMipmapsGetsThem) {
   glGetTextureImage(loaded.texture.id(), 6, GL_RGBA, GL_UNSIGNED_BYTE, 4, texel.data());
   // (235 and 20 in sRGB) averaged in linear light, back in sRGB: 173; BC1 rounds to 5-6 bits.
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(texel[static_cast<std::size_t>(c)], 173, 10) << c;
+}
+
+// Where the CPU builds the mip chains (a CPU rasteriser: TextureCapabilities::mipmapsOnCpu), they
+// are the driver's own: llvmpipe's glGenerateMipmap gives the same bytes for data textures and
+// the same codes within one for sRGB colour (its blit's sRGB encoding is an approximation; ours
+// rounds exactly), at every level of a random texture.
+TEST_F(MaterialTechniques, MipmapsBuiltOnTheCpuAreTheDriversOnACpuRasteriser) {
+  if (!lgh::gl::softwareRasterizer()) GTEST_SKIP() << "the chains are built on the CPU there only";
+  lgh::Image8 random;
+  random.width = 64;
+  random.height = 64;
+  random.channels = 4;
+  random.pixels.resize(std::size_t{64} * 64 * 4);
+  std::mt19937 generator(11);
+  for (std::uint8_t& code : random.pixels) code = static_cast<std::uint8_t>(generator());
+  std::vector<std::string> warnings;
+  for (const auto usage : {lgh::TextureUsage::Data, lgh::TextureUsage::Color}) {
+    auto capabilities = lgh::TextureCapabilities::query();
+    capabilities.mipmapsOnCpu = true;
+    const lgh::UploadedTexture cpu = lgh::uploadTexture(
+        random, nullptr, usage, lgh::TextureCompression::None, capabilities, warnings);
+    capabilities.mipmapsOnCpu = false;
+    const lgh::UploadedTexture driver = lgh::uploadTexture(
+        random, nullptr, usage, lgh::TextureCompression::None, capabilities, warnings);
+    const int tolerance = usage == lgh::TextureUsage::Data ? 0 : 1;
+    for (int level = 1, size = 32; size >= 1; ++level, size /= 2) {
+      std::vector<std::uint8_t> ours(static_cast<std::size_t>(size) * size * 4);
+      std::vector<std::uint8_t> theirs(ours.size());
+      glGetTextureImage(cpu.texture.id(), level, GL_RGBA, GL_UNSIGNED_BYTE,
+                        static_cast<GLsizei>(ours.size()), ours.data());
+      glGetTextureImage(driver.texture.id(), level, GL_RGBA, GL_UNSIGNED_BYTE,
+                        static_cast<GLsizei>(theirs.size()), theirs.data());
+      int largest = 0;
+      for (std::size_t i = 0; i < ours.size(); ++i) {
+        largest = std::max(largest, std::abs(int{ours[i]} - int{theirs[i]}));
+      }
+      EXPECT_LE(largest, tolerance) << "level " << level << (tolerance == 0 ? " data" : " sRGB");
+    }
+  }
 }
 
 // --- The gallery (docs/GALLERY.md) --------------------------------------------------------------

@@ -6,7 +6,9 @@
 
 #include <fmt/format.h>
 
+#include "gl/software_rasterizer.hpp"
 #include "lgh/error.hpp"
+#include "scene/blit_mip_chain.hpp"
 
 namespace lgh {
 namespace {
@@ -92,8 +94,8 @@ void setLevelRange(GLuint texture, int levels) {
   glTextureParameteri(texture, GL_TEXTURE_MAX_LEVEL, levels - 1);
 }
 
-UploadedTexture uploadPlain(const Image8& image, bool srgb, const StagedPixels* staged,
-                            gl::RecycledTextures* recycled) {
+UploadedTexture uploadPlain(const Image8& image, bool srgb, bool mipmapsOnCpu,
+                            const StagedPixels* staged, gl::RecycledTextures* recycled) {
   UploadedTexture result;
   const int levels = mipLevels(image.width, image.height);
   result.bytes = rgba8Bytes(image.width, image.height, levels);
@@ -111,7 +113,16 @@ UploadedTexture uploadPlain(const Image8& image, bool srgb, const StagedPixels* 
     glTextureSubImage2D(id, 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE,
                         image.pixels.data());
   }
-  glGenerateTextureMipmap(id);
+  if (mipmapsOnCpu) {
+    const std::vector<Image8> chain = buildBlitMipChain(image, srgb);
+    for (std::size_t i = 0; i < chain.size(); ++i) {
+      const Image8& level = chain[i];
+      glTextureSubImage2D(id, static_cast<GLint>(i + 1), 0, 0, level.width, level.height, GL_RGBA,
+                          GL_UNSIGNED_BYTE, level.pixels.data());
+    }
+  } else {
+    glGenerateTextureMipmap(id);
+  }
   result.uncompressedBytes = result.bytes;
   result.format = srgb ? "SRGB8_ALPHA8" : "RGBA8";
   return result;
@@ -212,6 +223,7 @@ TextureCapabilities TextureCapabilities::query() {
                       formatSupported(kBc1) && formatSupported(kBc3);
   capabilities.s3tcSrgb =
       capabilities.s3tc && formatSupported(kBc1Srgb) && formatSupported(kBc3Srgb);
+  capabilities.mipmapsOnCpu = gl::softwareRasterizer();
   return capabilities;
 }
 
@@ -283,7 +295,7 @@ UploadedTexture uploadTexture(const Image8& image, const BlockCompressedImage* p
       return uploadCompressing(image, format, srgb);
     }
   }
-  return uploadPlain(image, srgb, staged, recycled);
+  return uploadPlain(image, srgb, capabilities.mipmapsOnCpu, staged, recycled);
 }
 
 }  // namespace lgh

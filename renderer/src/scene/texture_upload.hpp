@@ -30,6 +30,10 @@ struct UploadedTexture {
 struct TextureCapabilities {
   bool s3tc = false;      // BC1-BC3
   bool s3tcSrgb = false;  // BC1-BC3 with sRGB decoding
+  // Mip chains built by buildBlitMipChain, not glGenerateMipmap: a CPU rasteriser (llvmpipe) blits
+  // each level, flushing and waiting for the one before it on the rasteriser threads, which cost
+  // the VM's cold thumbnails about 9 % (docs/BENCHMARKS.md).
+  bool mipmapsOnCpu = false;
   static TextureCapabilities query();
 };
 
@@ -53,7 +57,7 @@ UploadedTexture uploadTexture(const Image8& image, const BlockCompressedImage* p
                               gl::RecycledTextures* recycled = nullptr);
 
 // The mip chain of `image` below level 0, halving to 1 x 1 (2x2 box filter; `srgb`: averaged in
-// linear light).
+// linear light): the levels that compression on upload encodes.
 std::vector<Image8> buildMipChain(const Image8& image, bool srgb);
 
 }  // namespace lgh
