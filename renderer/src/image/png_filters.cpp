@@ -8,8 +8,17 @@
 namespace lgh::image_io::detail {
 namespace {
 
+// The filters' loops vectorise; on x86-64 a second copy for AVX2 is picked at load time where the
+// CPU has it, the build's baseline being SSE2 (docs/BENCHMARKS.md).
+#if defined(__x86_64__) && defined(__GNUC__)
+#define LGH_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define LGH_VECTOR_CLONES
+#endif
+
 enum Filter : std::uint8_t { kNone = 0, kSub = 1, kUp = 2, kAverage = 3, kPaeth = 4 };
 
+LGH_VECTOR_CLONES
 std::uint32_t cost(const std::uint8_t* row, std::size_t n) {
   std::uint32_t sum = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -20,6 +29,7 @@ std::uint32_t cost(const std::uint8_t* row, std::size_t n) {
   return sum;
 }
 
+LGH_VECTOR_CLONES
 void sub(const std::uint8_t* x, std::size_t n, int bpp, std::uint8_t* out) {
   for (int i = 0; i < bpp; ++i) out[i] = x[i];
   for (std::size_t i = static_cast<std::size_t>(bpp); i < n; ++i) {
@@ -27,10 +37,12 @@ void sub(const std::uint8_t* x, std::size_t n, int bpp, std::uint8_t* out) {
   }
 }
 
+LGH_VECTOR_CLONES
 void up(const std::uint8_t* x, const std::uint8_t* prior, std::size_t n, std::uint8_t* out) {
   for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<std::uint8_t>(x[i] - prior[i]);
 }
 
+LGH_VECTOR_CLONES
 void average(const std::uint8_t* x, const std::uint8_t* prior, std::size_t n, int bpp,
              std::uint8_t* out) {
   for (int i = 0; i < bpp; ++i) out[i] = static_cast<std::uint8_t>(x[i] - (prior[i] >> 1));
@@ -40,6 +52,7 @@ void average(const std::uint8_t* x, const std::uint8_t* prior, std::size_t n, in
 }
 
 // Branch-free, so that the compiler vectorises it.
+LGH_VECTOR_CLONES
 void paeth(const std::uint8_t* x, const std::uint8_t* prior, std::size_t n, int bpp,
            std::uint8_t* out) {
   for (int i = 0; i < bpp; ++i) out[i] = static_cast<std::uint8_t>(x[i] - prior[i]);
