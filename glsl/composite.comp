@@ -51,8 +51,10 @@ void main() {
 #ifdef LGH_SCENE_TARGET
   if (inFrame) imageStore(uScene, pixel, covered ? linearColor(pixel) : uBackground);
 #else
-  // The output holds the background already (include/frame_output.glsl).
-  if (!anyInvocationCovers(covered)) return;
+  if (!anyInvocationCovers(covered)) {
+    if (inFrame) storeBackgroundUnlessCleared(outputTarget(pixel));
+    return;
+  }
   if (!inFrame) return;
   if (covered) {
     storeOutput(outputTarget(pixel), linearColor(pixel));

@@ -91,7 +91,9 @@ void main() {
   ivec2 pixel = balancedPixel();
   bool inFrame = pixel.x < uFrameWidth && pixel.y < uFrameHeight;
   if (!anyInvocationCovers(inFrame && surfaceCovered(pixel))) {
-#ifndef LGH_FINAL_OUTPUT  // the output holds the background already (include/frame_output.glsl)
+#ifdef LGH_FINAL_OUTPUT
+    if (inFrame) storeBackgroundUnlessCleared(outputTarget(pixel));
+#else
     if (inFrame) storeRadiance(pixel, vec4(0.0));
 #endif
     return;

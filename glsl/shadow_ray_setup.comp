@@ -7,9 +7,10 @@
 // With LGH_POINT_LIGHT_RAYS (the shadowed brute-force reference): one ray to each of
 // uRaysPerPixel point lights of the PointLight SSBO from uFirstLight on, at their exact positions.
 // Inputs: G-buffer position and normal, lights SSBO, LGH samples. Outputs: origins, targets.
-// The pass clears the origins first (w = 0: no surface, no rays), so invocation groups of
-// background pixels write nothing (include/skip_background.glsl); the tracer reads no target of a
-// pixel without a surface.
+// A pixel without a surface gets origin w = 0 (no rays) and no targets: the tracer reads none of
+// them. On a CPU rasteriser the pass clears the origins first, so that invocation groups of
+// background pixels write nothing (include/skip_background.glsl): a store there is a scalar loop
+// over the SIMD lanes.
 
 #include "include/skip_background.glsl"
 #include "include/gbuffer.glsl"
@@ -38,6 +39,7 @@ uniform ivec2 uFrameSize;
 uniform int uLghSampleCount;  // k; 0 when the frame has no LGH samples
 uniform float uSurfaceOffset;  // world units the origin moves along the normal
 uniform uint uSeed;
+uniform bool uOriginsCleared;  // every origin is (0, 0, 0, 0) already
 
 const vec4 NO_RAY = vec4(0.0, 0.0, 0.0, -1.0);
 
@@ -116,10 +118,16 @@ void main() {
   bool inFrame = all(lessThan(pixel, uFrameSize));
   uint pixelIndex = uint(pixel.y) * uint(uFrameSize.x) + uint(pixel.x);
   uint firstTarget = pixelIndex * uint(uRaysPerPixel);
-  if (!anyInvocationCovers(inFrame && surfaceCovered(pixel))) return;
+  if (!anyInvocationCovers(inFrame && surfaceCovered(pixel))) {
+    if (inFrame && !uOriginsCleared) origins[pixelIndex] = vec4(0.0);
+    return;
+  }
   if (!inFrame) return;
   SurfacePoint s;
-  if (!readSurface(pixel, s)) return;  // its origin stays cleared
+  if (!readSurface(pixel, s)) {
+    if (!uOriginsCleared) origins[pixelIndex] = vec4(0.0);
+    return;
+  }
   vec3 origin = s.position + s.normal * uSurfaceOffset;
   origins[pixelIndex] = vec4(origin, 1.0);
 #ifdef LGH_POINT_LIGHT_RAYS

@@ -3,9 +3,10 @@
 // (LGH_OUTPUT_FORMAT: rgba16f or rgba32f), with the rows turned over (the first row GL stores is
 // the image's top row, so no one flips them on the CPU). Written by the composite pass, and by
 // the direct lighting pass of frames that have nothing to composite (LGH_FINAL_OUTPUT).
-// Image unit LGH_IMAGE_OUTPUT. The pass clears the image to the background before it runs
-// (bindFrameOutput in composite_pass.cpp), so invocation groups of background pixels store
-// nothing: on a CPU rasteriser an image store is a scalar loop over the SIMD lanes.
+// Image unit LGH_IMAGE_OUTPUT. On a CPU rasteriser the pass clears the image to the background
+// before it runs (bindFrameOutput in composite_pass.cpp), so that invocation groups of background
+// pixels store nothing: there an image store is a scalar loop over the SIMD lanes, while on a GPU
+// the clear is the dearer of the two.
 #ifndef LGH_FRAME_OUTPUT_GLSL
 #define LGH_FRAME_OUTPUT_GLSL
 
@@ -16,6 +17,7 @@
 
 uniform int uHeight;       // of the frame, to turn the rows over
 uniform vec4 uBackground;  // rgb, a = alpha of the background (0 when transparent)
+uniform bool uBackgroundCleared;  // the output holds the background already
 #ifdef LGH_DISPLAY_OUTPUT
 uniform int uToneMap;  // LGH_TONE_MAP_*
 uniform float uExposure;
@@ -48,6 +50,12 @@ void storeBackground(ivec2 target) {
 #else
   imageStore(uColor, target, uBackground);
 #endif
+}
+
+// The background at `target` unless the output was cleared to it (for invocation groups of
+// background pixels alone).
+void storeBackgroundUnlessCleared(ivec2 target) {
+  if (!uBackgroundCleared) storeBackground(target);
 }
 
 #endif

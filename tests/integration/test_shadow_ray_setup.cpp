@@ -16,6 +16,7 @@
 
 #include "context/gl_context.hpp"
 #include "gl/gl_objects.hpp"
+#include "gl/software_rasterizer.hpp"
 #include "passes/frame_targets.hpp"
 #include "passes/light_buffer.hpp"
 #include "passes/shadow_ray_setup_pass.hpp"
@@ -50,7 +51,8 @@ class ShadowRaySetup : public ::testing::Test {
   // start out holding 9s, so that a pixel whose origin the pass leaves alone shows.
   static std::vector<std::vector<bool>> rays(const std::vector<Surface>& surfaces,
                                              const std::vector<lgh::LightDesc>& lights,
-                                             std::vector<float>* originW = nullptr) {
+                                             std::vector<float>* originW = nullptr,
+                                             bool clearsOrigins = lgh::gl::softwareRasterizer()) {
     lgh::FrameTargets frame;
     const int width = static_cast<int>(surfaces.size());
     frame.resize(width, 1);
@@ -85,7 +87,7 @@ class ShadowRaySetup : public ::testing::Test {
     inputs.layout.shadowedLights = static_cast<int>(lights.size());
     inputs.lights = lightBuffer.id();
     inputs.surfaceOffset = 1e-3F;
-    lgh::ShadowRaySetupPass pass;
+    lgh::ShadowRaySetupPass pass(clearsOrigins);
     pass.run(inputs, frame, origins.id(), targets.id());
     std::vector<glm::vec4> written(static_cast<std::size_t>(rayCount));
     glGetNamedBufferSubData(targets.id(), 0, rayCount * static_cast<GLsizeiptr>(sizeof(glm::vec4)),
@@ -152,17 +154,20 @@ TEST_F(ShadowRaySetup, APointLightGivesNoRaysBeyondItsRange) {
 // A row of 40 pixels: background, then 8 drawn, then background again. The first 16 make SIMD
 // groups of background alone (which skip the pass's work: include/skip_background.glsl), the
 // last ones share groups with drawn pixels; every background pixel's origin says it has no
-// surface (the pass clears the origins first: they start out as 9s here), every drawn one gets
-// its ray.
+// surface (they start out as 9s here), every drawn one gets its ray: with the origins cleared
+// first (a CPU rasteriser's way) and stored by the shader (a GPU's).
 TEST_F(ShadowRaySetup, BackgroundPixelsGetNoRaysAloneOrBesideSurfaces) {
   std::vector<Surface> surfaces(40, Surface{.drawn = false});
   for (std::size_t p = 16; p < 24; ++p) surfaces[p] = Surface{};
   surfaces[26] = Surface{};
-  std::vector<float> originW;
-  const std::vector<std::vector<bool>> got = rays(surfaces, {sunFromAbove()}, &originW);
-  for (std::size_t p = 0; p < surfaces.size(); ++p) {
-    EXPECT_EQ(got[p][0], surfaces[p].drawn) << p;
-    EXPECT_EQ(originW[p], surfaces[p].drawn ? 1.0F : 0.0F) << p;
+  for (const bool clearsOrigins : {true, false}) {
+    std::vector<float> originW;
+    const std::vector<std::vector<bool>> got =
+        rays(surfaces, {sunFromAbove()}, &originW, clearsOrigins);
+    for (std::size_t p = 0; p < surfaces.size(); ++p) {
+      EXPECT_EQ(got[p][0], surfaces[p].drawn) << p << (clearsOrigins ? " cleared" : " stored");
+      EXPECT_EQ(originW[p], surfaces[p].drawn ? 1.0F : 0.0F) << p;
+    }
   }
 }
 

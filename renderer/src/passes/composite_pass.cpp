@@ -101,7 +101,7 @@ void setBackground(GLuint program, const Background& background) {
                        background.codes.data());
 }
 
-// The whole output to the background, so that the pass stores its surfaces' pixels only
+// The whole output to the background, so that the pass stores no group of background pixels
 // (include/frame_output.glsl).
 void clearToBackground(GLuint texture, OutputPixels pixels, const Background& background) {
   if (pixels == OutputPixels::Display8) {
@@ -134,12 +134,14 @@ gl::Program buildFrameOutputProgram(const char* computeShader, const std::string
 }
 
 void bindFrameOutput(GLuint program, const OutputSettings& output, OutputPixels pixels,
-                     FrameTargets& targets) {
+                     FrameTargets& targets, bool clearFirst) {
   setDisplayUniforms(program, output, targets.height);
   const Background background = backgroundOf(output);
   setBackground(program, background);
   const GLuint texture = targets.output(pixels).texture.id();
-  clearToBackground(texture, pixels, background);
+  if (clearFirst) clearToBackground(texture, pixels, background);
+  glProgramUniform1i(program, glGetUniformLocation(program, "uBackgroundCleared"),
+                     clearFirst ? 1 : 0);
   glBindImageTexture(LGH_IMAGE_OUTPUT, texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, imageFormat(pixels));
 }
 
@@ -180,7 +182,7 @@ void CompositePass::dispatch(const OutputSettings& output, OutputPixels pixels, 
     glBindImageTexture(LGH_IMAGE_OUTPUT, targets.sceneLinear().texture.id(), 0, GL_FALSE, 0,
                        GL_WRITE_ONLY, GL_RGBA32F);
   } else {
-    bindFrameOutput(program, output, pixels, targets);
+    bindFrameOutput(program, output, pixels, targets, clearsBackground_);
   }
   glDispatchCompute(gl::groups2D(targets.width), gl::groups2D(targets.height), 1);
   // Read next by the pixel pack pass, a read-back, or the forward blend's framebuffer.

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "gl/gl_objects.hpp"
+#include "gl/software_rasterizer.hpp"
 #include "lgh/frame_pixels.hpp"
 #include "lgh/image.hpp"
 #include "lgh/request.hpp"
@@ -41,6 +42,7 @@ class CompositePass {
 
   std::array<std::optional<gl::Program>, 3> programs_;  // by OutputPixels, compiled on first use
   std::optional<gl::Program> scene_;
+  bool clearsBackground_ = gl::softwareRasterizer();  // bindFrameOutput's clearFirst
 };
 
 // Uploads the sRGB thresholds of include/display_transform.glsl to a program that includes it.
@@ -61,9 +63,11 @@ OutputPixels outputPixelsFor(const OutputSettings& output);
 gl::Program buildFrameOutputProgram(const char* computeShader, const std::string& defines,
                                     OutputPixels pixels);
 // Binds output(pixels) to such a program's image unit and sets its uniforms: the frame's height,
-// the background, and for display codes the tone map and exposure.
+// the background, and for display codes the tone map and exposure. `clearFirst` (a CPU
+// rasteriser): the output is cleared to the background first, and the program's groups of
+// background pixels store nothing (include/frame_output.glsl).
 void bindFrameOutput(GLuint program, const OutputSettings& output, OutputPixels pixels,
-                     FrameTargets& targets);
+                     FrameTargets& targets, bool clearFirst);
 
 // Reads a LinearFloat output now (tests and the benchmark's probes).
 FloatImage readLinearOutput(FrameTargets& targets);

@@ -47,7 +47,7 @@ void DirectLightingPass::runToOutput(const DirectLightingInputs& inputs,
                                      const CameraMatrices& camera, const OutputSettings& output,
                                      OutputPixels pixels, FrameTargets& targets) {
   const GLuint program = this->program(inputs.brdf, pixels);
-  bindFrameOutput(program, output, pixels, targets);
+  bindFrameOutput(program, output, pixels, targets, clearsBackground_);
   dispatch(program, inputs, camera, targets);
   // Read next by the pixel pack pass or a read-back, as the composite's output is.
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |

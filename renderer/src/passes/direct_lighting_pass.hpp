@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "gl/gl_objects.hpp"
+#include "gl/software_rasterizer.hpp"
 #include "lgh/frame_pixels.hpp"
 #include "lgh/request.hpp"
 #include "passes/brdf_features.hpp"
@@ -51,6 +52,7 @@ class DirectLightingPass {
   // first use.
   using ProgramKey = std::pair<std::string, std::optional<OutputPixels>>;
   std::map<ProgramKey, gl::Program> programs_;
+  bool clearsBackground_ = gl::softwareRasterizer();  // bindFrameOutput's clearFirst
 };
 
 }  // namespace lgh

@@ -9,14 +9,6 @@ namespace {
 
 GLint location(GLuint program, const char* name) { return glGetUniformLocation(program, name); }
 
-// Every pixel's origin to (0, 0, 0, 0): no surface, no rays. The shader writes the origins of
-// pixels with a surface only (glsl/shadow_ray_setup.comp); a clear is a fill, where a shader's
-// stores of the background cost a CPU rasteriser a scalar loop over its SIMD lanes.
-void clearOrigins(GLuint origins, const FrameTargets& frame) {
-  const auto bytes = static_cast<GLsizeiptr>(frame.width) * frame.height * 4 * sizeof(float);
-  glClearNamedBufferSubData(origins, GL_RGBA32F, 0, bytes, GL_RGBA, GL_FLOAT, nullptr);
-}
-
 }  // namespace
 
 void setShadowRayUniforms(GLuint program, const ShadowRayLayout& layout) {
@@ -26,8 +18,20 @@ void setShadowRayUniforms(GLuint program, const ShadowRayLayout& layout) {
   glProgramUniform1i(program, location(program, "uVisibilityWords"), layout.words());
 }
 
-ShadowRaySetupPass::ShadowRaySetupPass()
-    : program_(gl::buildComputeProgram("shadow_ray_setup.comp")) {}
+ShadowRaySetupPass::ShadowRaySetupPass(bool clearsOrigins)
+    : program_(gl::buildComputeProgram("shadow_ray_setup.comp")), clearsOrigins_(clearsOrigins) {}
+
+// On a CPU rasteriser every pixel's origin goes to (0, 0, 0, 0), no surface, by a clear, and the
+// shader stores the origins of surfaces only (glsl/shadow_ray_setup.comp): there a shader's store
+// is a scalar loop over the SIMD lanes and a clear a fill, while on a GPU the clear costs more.
+void ShadowRaySetupPass::prepareOrigins(GLuint program, GLuint origins,
+                                        const FrameTargets& frame) const {
+  if (clearsOrigins_) {
+    const auto bytes = static_cast<GLsizeiptr>(frame.width) * frame.height * 4 * sizeof(float);
+    glClearNamedBufferSubData(origins, GL_RGBA32F, 0, bytes, GL_RGBA, GL_FLOAT, nullptr);
+  }
+  glProgramUniform1i(program, location(program, "uOriginsCleared"), clearsOrigins_ ? 1 : 0);
+}
 
 void ShadowRaySetupPass::run(const ShadowRaySetupInputs& inputs, const FrameTargets& frame,
                              GLuint origins, GLuint targets) {
@@ -43,7 +47,7 @@ void ShadowRaySetupPass::run(const ShadowRaySetupInputs& inputs, const FrameTarg
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_SAMPLES, inputs.lghSamples);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_ORIGINS, origins);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_TARGETS, targets);
-  clearOrigins(origins, frame);
+  prepareOrigins(program, origins, frame);
   glDispatchCompute(gl::groups2D(frame.width), gl::groups2D(frame.height), 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
@@ -67,7 +71,7 @@ void ShadowRaySetupPass::runToPointLights(GLuint pointLights, int first, int cou
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_POINT_LIGHTS, pointLights);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_ORIGINS, origins);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_TARGETS, targets);
-  clearOrigins(origins, frame);
+  prepareOrigins(program, origins, frame);
   glDispatchCompute(gl::groups2D(frame.width), gl::groups2D(frame.height), 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }

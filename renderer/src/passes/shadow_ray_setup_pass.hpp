@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "gl/gl_objects.hpp"
+#include "gl/software_rasterizer.hpp"
 #include "passes/frame_targets.hpp"
 
 namespace lgh {
@@ -30,7 +31,8 @@ struct ShadowRaySetupInputs {
 
 class ShadowRaySetupPass {
  public:
-  ShadowRaySetupPass();
+  // `clearsOrigins`: as the device prefers (tests try both).
+  explicit ShadowRaySetupPass(bool clearsOrigins = gl::softwareRasterizer());
   void run(const ShadowRaySetupInputs& inputs, const FrameTargets& frame, GLuint origins,
            GLuint targets);
   // The shadowed brute-force reference's rays: from every pixel to each of `count` point lights
@@ -39,8 +41,13 @@ class ShadowRaySetupPass {
                         const FrameTargets& frame, GLuint origins, GLuint targets);
 
  private:
+  // Clears the origins first where that is cheaper than the shader's stores (a CPU rasteriser);
+  // tells the program whether it did.
+  void prepareOrigins(GLuint program, GLuint origins, const FrameTargets& frame) const;
+
   gl::Program program_;
   gl::Program pointLightProgram_ = gl::Program::empty();
+  bool clearsOrigins_;
 };
 
 // Sets the uniforms of glsl/include/ray_batch.glsl on `program`.
