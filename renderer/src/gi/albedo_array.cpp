@@ -7,23 +7,12 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "image/image_common.hpp"
+
 namespace lgh {
 namespace {
 
-// 256-entry tables: sRGB byte -> linear, and linear -> the nearest sRGB byte by search.
-const std::array<float, 256>& srgbToLinearTable() {
-  static const std::array<float, 256> table = [] {
-    std::array<float, 256> values{};
-    for (int i = 0; i < 256; ++i) {
-      const float c = static_cast<float>(i) / 255.0F;
-      values[static_cast<std::size_t>(i)] =
-          c <= 0.04045F ? c / 12.92F : std::pow((c + 0.055F) / 1.055F, 2.4F);
-    }
-    return values;
-  }();
-  return table;
-}
-
+// Linear -> the nearest sRGB byte (bytes -> linear: image_io::detail::srgbToLinearTable).
 std::uint8_t linearToSrgb(float linear) {
   const float c = std::clamp(linear, 0.0F, 1.0F);
   const float encoded = c <= 0.0031308F ? c * 12.92F : 1.055F * std::pow(c, 1.0F / 2.4F) - 0.055F;
@@ -47,7 +36,7 @@ Image8 resampleImage(const Image8& image, int size) {
   out.channels = 4;
   out.pixels.assign(static_cast<std::size_t>(size) * size * 4, 255);
   if (!usable(image)) return out;
-  const auto& toLinear = srgbToLinearTable();
+  const auto& toLinear = image_io::detail::srgbToLinearTable();
   for (int y = 0; y < size; ++y) {
     const int y0 = y * image.height / size;
     const int y1 = std::max(y0 + 1, (y + 1) * image.height / size);
@@ -76,7 +65,7 @@ Image8 resampleImage(const Image8& image, int size) {
 
 glm::vec3 meanLinearColor(const Image8& image) {
   if (!usable(image)) return glm::vec3(1.0F);
-  const auto& toLinear = srgbToLinearTable();
+  const auto& toLinear = image_io::detail::srgbToLinearTable();
   glm::dvec3 sum(0.0);
   const std::size_t pixels = static_cast<std::size_t>(image.width) * image.height;
   for (std::size_t i = 0; i < pixels; ++i) {

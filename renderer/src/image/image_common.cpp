@@ -307,6 +307,20 @@ void checkLinearRgbaView(const LinearRgbaView& image, bool halfFile) {
 
 const std::array<float, 256>& srgbThresholds() { return srgbEncoder().thresholds(); }
 
+std::uint8_t srgbCode(float linear01) { return srgbEncoder().encode(linear01); }
+
+const std::array<float, 256>& srgbToLinearTable() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> values{};
+    for (std::size_t code = 0; code < values.size(); ++code) {
+      const float c = static_cast<float>(code) / 255.0F;
+      values[code] = c <= 0.04045F ? c / 12.92F : std::pow((c + 0.055F) / 1.055F, 2.4F);
+    }
+    return values;
+  }();
+  return table;
+}
+
 void checkPngCompression(int level) {
   if (level < 0 || level > 9) {
     throw Error(ErrorCode::Invalid,

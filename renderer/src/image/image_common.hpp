@@ -72,6 +72,10 @@ void checkMetadata(const ImageMetadata& metadata, MetadataFormat format);
 // encodes to the number of thresholds at or below it. The GPU's display transform counts against
 // the same table (glsl/include/display_transform.glsl), so both round alike.
 const std::array<float, 256>& srgbThresholds();
+// The code a linear value in [0, 1] encodes to by those thresholds (the CPU's display transform).
+std::uint8_t srgbCode(float linear01);
+// Each sRGB code's linear value (the sRGB EOTF of code / 255).
+const std::array<float, 256>& srgbToLinearTable();
 
 // 1..4 interleaved 8-bit channels (grey, grey+alpha, RGB, RGBA) to RGBA; alpha 255 when absent.
 Image8 expandToRgba8(int width, int height, int channels, const std::uint8_t* pixels);

@@ -15,7 +15,6 @@
 #include <cstddef>
 
 #include "gl/gl_objects.hpp"
-#include "gl/gpu_timer.hpp"
 #include "lgh/frame_pixels.hpp"
 #include "passes/frame_targets.hpp"
 

@@ -12,51 +12,6 @@
 namespace lgh {
 namespace {
 
-float srgbToLinear(float c) {
-  return c <= 0.04045F ? c / 12.92F : std::pow((c + 0.055F) / 1.055F, 2.4F);
-}
-
-// Each sRGB code's linear value.
-const std::array<float, 256>& srgbDecodeTable() {
-  static const std::array<float, 256> table = [] {
-    std::array<float, 256> values{};
-    for (std::size_t code = 0; code < values.size(); ++code) {
-      values[code] = srgbToLinear(static_cast<float>(code) / 255.0F);
-    }
-    return values;
-  }();
-  return table;
-}
-
-// The correctly rounded sRGB codes of linear values in [0, 1] (image_common.hpp's thresholds: a
-// value's code is the number of thresholds at or below it), by a table of 4096 steps that gives
-// the code at the step's start and a threshold or two from there.
-class SrgbEncoder {
- public:
-  SrgbEncoder() : thresholds_(image_io::detail::srgbThresholds()) {
-    for (std::size_t i = 0; i < kSteps; ++i) {
-      startCodes_[i] = count(static_cast<float>(i) / static_cast<float>(kSteps - 1));
-    }
-  }
-  std::uint8_t operator()(float linear) const {
-    const float clamped = std::clamp(linear, 0.0F, 1.0F);
-    auto code = static_cast<std::size_t>(
-        startCodes_[static_cast<std::size_t>(clamped * static_cast<float>(kSteps - 1))]);
-    while (code < 255 && clamped >= thresholds_[code]) ++code;
-    while (code > 0 && clamped < thresholds_[code - 1]) --code;  // the step's float rounded up
-    return static_cast<std::uint8_t>(code);
-  }
-
- private:
-  static constexpr std::size_t kSteps = 4096;
-  std::uint8_t count(float linear) const {
-    return static_cast<std::uint8_t>(
-        std::upper_bound(thresholds_.begin(), thresholds_.end(), linear) - thresholds_.begin());
-  }
-  const std::array<float, 256>& thresholds_;
-  std::array<std::uint8_t, kSteps> startCodes_{};
-};
-
 // The rounded mean of two bytes in each 16-bit lane of `a` and `b` (the low bytes).
 std::uint32_t halvesRoundedUp(std::uint32_t a, std::uint32_t b) {
   return ((a + b + 0x00010001U) >> 1) & 0x00FF00FFU;
@@ -65,8 +20,8 @@ std::uint32_t halvesRoundedUp(std::uint32_t a, std::uint32_t b) {
 // The texels of one output row from source rows `top` and `bottom`: each the mean of two
 // neighbouring texels of each (the same texel twice where the row is one texel wide).
 void halveRow(const std::uint8_t* top, const std::uint8_t* bottom, int width, bool srgb,
-              const SrgbEncoder& encode, std::uint8_t* out) {
-  const std::array<float, 256>& toLinear = srgbDecodeTable();
+              std::uint8_t* out) {
+  const std::array<float, 256>& toLinear = image_io::detail::srgbToLinearTable();
   const std::size_t step = width > 1 ? 4 : 0;  // from a texel to its right neighbour
   const auto outWidth = static_cast<std::size_t>(std::max(width / 2, 1));
   // Every channel's mean as llvmpipe's blit to half size takes it: a rounded mean of each row's
@@ -88,13 +43,13 @@ void halveRow(const std::uint8_t* top, const std::uint8_t* bottom, int width, bo
     std::memcpy(out + 4 * x, &mean, 4);
   }
   if (!srgb) return;
-  for (std::size_t x = 0; x < outWidth; ++x) {  // colour in linear light, alpha as a float mean
+  for (std::size_t x = 0; x < outWidth; ++x) {  // colour in linear light, alpha rounded half up
     const std::uint8_t* a = top + 8 * x;
     const std::uint8_t* b = bottom + 8 * x;
     for (std::size_t c = 0; c < 3; ++c) {
       const float sum =
           toLinear[a[c]] + toLinear[a[c + step]] + toLinear[b[c]] + toLinear[b[c + step]];
-      out[4 * x + c] = encode(sum * 0.25F);
+      out[4 * x + c] = image_io::detail::srgbCode(std::clamp(sum * 0.25F, 0.0F, 1.0F));
     }
     out[4 * x + 3] = static_cast<std::uint8_t>((a[3] + a[3 + step] + b[3] + b[3 + step] + 2) / 4);
   }
@@ -121,8 +76,8 @@ Tap tapFor(int i, int size, int outSize) {
 
 // A level below one with an odd side (above 1): each texel sampled bilinearly at its centre, as a
 // GPU's blit to half size does (glGenerateMipmap), in linear light for sRGB colour.
-Image8 resampled(const Image8& previous, Image8 next, bool srgb, const SrgbEncoder& encode) {
-  const std::array<float, 256>& toLinear = srgbDecodeTable();
+Image8 resampled(const Image8& previous, Image8 next, bool srgb) {
+  const std::array<float, 256>& toLinear = image_io::detail::srgbToLinearTable();
   const auto value = [&](int x, int y, int c) {
     const std::uint8_t code =
         previous.pixels[(static_cast<std::size_t>(y) * previous.width + x) * 4 + c];
@@ -141,7 +96,7 @@ Image8 resampled(const Image8& previous, Image8 next, bool srgb, const SrgbEncod
         const float mean = std::lerp(top, bottom, ty.weight);
         out[c] =
             srgb && c < 3
-                ? encode(mean)
+                ? image_io::detail::srgbCode(std::clamp(mean, 0.0F, 1.0F))
                 : static_cast<std::uint8_t>(std::lround(std::clamp(mean, 0.0F, 1.0F) * 255.0F));
       }
     }
@@ -153,7 +108,6 @@ Image8 resampled(const Image8& previous, Image8 next, bool srgb, const SrgbEncod
 // rounds data (halveRow) and to the nearest code in linear light for sRGB colour; where a side is
 // odd, bilinear samples at the texels' centres (`resampled`), so that the levels stay aligned.
 Image8 halved(const Image8& previous, bool srgb) {
-  static const SrgbEncoder encode;
   Image8 next;
   next.width = std::max(previous.width / 2, 1);
   next.height = std::max(previous.height / 2, 1);
@@ -161,7 +115,7 @@ Image8 halved(const Image8& previous, bool srgb) {
   next.pixels.resize(static_cast<std::size_t>(next.width) * next.height * 4);
   const auto odd = [](int size) { return size > 1 && size % 2 != 0; };
   if (odd(previous.width) || odd(previous.height)) {
-    return resampled(previous, std::move(next), srgb, encode);
+    return resampled(previous, std::move(next), srgb);
   }
   const std::size_t rowBytes = static_cast<std::size_t>(previous.width) * 4;
   for (int y = 0; y < next.height; ++y) {
@@ -169,7 +123,7 @@ Image8 halved(const Image8& previous, bool srgb) {
     const int bottom = std::min(2 * y + 1, previous.height - 1);
     halveRow(&previous.pixels[static_cast<std::size_t>(top) * rowBytes],
              &previous.pixels[static_cast<std::size_t>(bottom) * rowBytes], previous.width, srgb,
-             encode, &next.pixels[static_cast<std::size_t>(y) * next.width * 4]);
+             &next.pixels[static_cast<std::size_t>(y) * next.width * 4]);
   }
   return next;
 }
