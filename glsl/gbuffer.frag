@@ -24,9 +24,22 @@ layout(location = 4) out vec4 outEmissive;
 layout(location = 5) out uvec4 outLayers;
 
 void main() {
-  FragmentInputs inputs = FragmentInputs(vin.worldPosition, vin.basePosition, vin.normal,
-                                         vin.tangent, vin.uv0, vin.uv1, vin.color,
+#ifdef LGH_DISPLACED
+  vec3 basePosition = vin.basePosition;
+#else
+  vec3 basePosition = vin.worldPosition;  // the same value: one varying less
+#endif
+#if LGH_MATERIAL_HAS(LGH_MATERIAL_SURFACE_FRAME)
+  FragmentInputs inputs = FragmentInputs(vin.worldPosition, basePosition, vin.normal, vin.tangent,
+                                         vin.uv0, vin.uv1, vin.color, vin.diffuseLight,
+                                         vin.specularLight);
+#else
+  // Nothing reads texture coordinates or tangents: left out, they are varyings fewer for a CPU
+  // rasteriser to set up per triangle and interpolate (docs/BENCHMARKS.md).
+  FragmentInputs inputs = FragmentInputs(vin.worldPosition, basePosition, vin.normal,
+                                         vec4(1.0, 0.0, 0.0, 1.0), vec2(0.0), vec2(0.0), vin.color,
                                          vin.diffuseLight, vin.specularLight);
+#endif
   Derivatives derivatives = screenDerivatives(inputs);
 #if LGH_MATERIAL_HAS(LGH_MATERIAL_DISCARD)
   if (uPointDisk && dot(vin.sprite, vin.sprite) > 1.0) discard;

@@ -19,8 +19,9 @@
 #define LGH_MATERIAL_LAYERS 4   // KHR_materials_* layers of metallic-roughness
 #define LGH_MATERIAL_CLASSIC 8  // the lecture's models (Phong and up), Gouraud and flat shading
 #define LGH_MATERIAL_BICUBIC 16 // the shader's bicubic texture filter
+#define LGH_MATERIAL_SURFACE_FRAME 32  // texture coordinates and tangents: a texture, or layers
 #ifndef LGH_MATERIAL_FEATURES
-#define LGH_MATERIAL_FEATURES 31
+#define LGH_MATERIAL_FEATURES 63
 #endif
 #define LGH_MATERIAL_HAS(feature) ((LGH_MATERIAL_FEATURES & (feature)) != 0)
 

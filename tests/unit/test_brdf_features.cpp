@@ -195,18 +195,27 @@ TEST(MaterialFeatures, EachFeatureComesFromWhatTheMaterialUses) {
   relief.surface.technique = lgh::SurfaceDetail::Relief;
   relief.surface.heightTexture.image = 0;
   relief.surface.reliefSilhouettes = true;
-  EXPECT_EQ(lgh::materialFeatures(relief, item), lgh::kMaterialDiscard | lgh::kMaterialHeight);
+  const std::uint32_t frame = lgh::kMaterialSurfaceFrame;
+  EXPECT_EQ(lgh::materialFeatures(relief, item),
+            lgh::kMaterialDiscard | lgh::kMaterialHeight | frame);
   relief.surface.reliefSilhouettes = false;
-  EXPECT_EQ(lgh::materialFeatures(relief, item), lgh::kMaterialHeight);
+  EXPECT_EQ(lgh::materialFeatures(relief, item), lgh::kMaterialHeight | frame);
   lgh::Material coated = plain;
-  coated.clearcoat.factor = 0.5F;
-  EXPECT_EQ(lgh::materialFeatures(coated, item), lgh::kMaterialLayers);
+  coated.clearcoat.factor = 0.5F;  // the layers read the tangent frame
+  EXPECT_EQ(lgh::materialFeatures(coated, item), lgh::kMaterialLayers | frame);
   lgh::Material phong = coated;  // a classic model's layers are never read
   phong.model = MaterialModel::Phong;
   EXPECT_EQ(lgh::materialFeatures(phong, item), lgh::kMaterialClassic);
   lgh::Material bicubic = plain;
   bicubic.bicubic = true;
   EXPECT_EQ(lgh::materialFeatures(bicubic, item), lgh::kMaterialBicubic);
+  // Any texture, in whichever slot, needs the texture coordinates (and may need the tangents).
+  const std::size_t textures = lgh::allMaterialTextures(plain).size();
+  for (std::size_t i = 0; i < textures; ++i) {
+    lgh::Material textured = plain;
+    lgh::allMaterialTextures(textured)[i]->image = 0;
+    EXPECT_EQ(lgh::materialFeatures(textured, item) & frame, frame) << "texture " << i;
+  }
   item.topology = lgh::Topology::Points;  // cut to disks
   EXPECT_EQ(lgh::materialFeatures(plain, item), lgh::kMaterialDiscard);
 }

@@ -174,6 +174,10 @@ std::uint32_t materialFeatures(const Material& material, const GpuScene::DrawIte
   }
   if (isClassicModel(model)) features |= kMaterialClassic;
   if (material.bicubic) features |= kMaterialBicubic;
+  const auto textures = allMaterialTextures(material);
+  const bool textured = std::any_of(textures.begin(), textures.end(),
+                                    [](const TextureRef* texture) { return texture->valid(); });
+  if (textured || (features & kMaterialLayers) != 0U) features |= kMaterialSurfaceFrame;
   return features;
 }
 

@@ -17,6 +17,7 @@ SurfaceProgram& SurfacePrograms::get(const SurfaceProgramKey& key) {
   const bool triangles = key.topology == Topology::Triangles;
   if (triangles && key.shading == ShadingMode::Gouraud) defines += "#define LGH_GOURAUD\n";
   if (triangles && key.displaced) {
+    defines += "#define LGH_DISPLACED 1\n";
     stages.push_back({GL_TESS_CONTROL_SHADER, "gbuffer_displace.tesc"});
     stages.push_back({GL_TESS_EVALUATION_SHADER, "gbuffer_displace.tese"});
   }

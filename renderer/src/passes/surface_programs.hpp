@@ -28,7 +28,8 @@ inline constexpr std::uint32_t kMaterialHeight = 2U;
 inline constexpr std::uint32_t kMaterialLayers = 4U;
 inline constexpr std::uint32_t kMaterialClassic = 8U;
 inline constexpr std::uint32_t kMaterialBicubic = 16U;
-inline constexpr std::uint32_t kAllMaterialFeatures = 31U;
+inline constexpr std::uint32_t kMaterialSurfaceFrame = 32U;
+inline constexpr std::uint32_t kAllMaterialFeatures = 63U;
 
 struct SurfaceProgramKey {
   Topology topology = Topology::Triangles;

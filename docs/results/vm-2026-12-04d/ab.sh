@@ -1,0 +1,10 @@
+#!/bin/bash
+# ab.sh ROUNDS "LABEL|ENV|BIN|FLAGS" ...  alternated cold runs
+n=$1; shift
+for i in $(seq 1 $n); do
+  for spec in "$@"; do
+    IFS='|' read -r label envs bin flags <<< "$spec"
+    r=$(env $envs scripts/bench-thumbnails --lghd "$bin" --assets /usr/share/assimp/models/glTF2 --no-f3d --rounds 5 --cache off -- $flags 2>&1 >/dev/null | grep -E "thumbnails/s" | head -1)
+    echo "$label$i $r"
+  done
+done
