@@ -1,4 +1,6 @@
 #!/bin/bash
+# Seventeenth session: alternated cold runs of several lghd set-ups on the VM:
+#   ab.sh ROUNDS "LABEL|ENV|BINARY|LGHD FLAGS" ...   (ENV e.g. X=1 for none)
 # ab.sh ROUNDS "LABEL|ENV|BIN|FLAGS" ...  alternated cold runs
 n=$1; shift
 for i in $(seq 1 $n); do

@@ -1,6 +1,9 @@
+# Seventeenth session: which thread runs while the other core idles, over two cold batches of
+# the asset list three times over (machine-wide sched_switch; perf needs root or
+# perf_event_paranoid <= 1): python3 idle_who.py LGHD [LGHD FLAGS], from the repository root.
 # Machine-wide sched_switch over cold batches; idle time split by what the render thread was doing.
 import importlib.machinery, importlib.util, os, re, subprocess, sys, time, collections
-loader = importlib.machinery.SourceFileLoader("bt", "/work/main/scripts/bench-thumbnails")
+loader = importlib.machinery.SourceFileLoader("bt", "scripts/bench-thumbnails")
 spec = importlib.util.spec_from_loader("bt", loader); bt = importlib.util.module_from_spec(spec); loader.exec_module(bt)
 binary, assets = sys.argv[1], '/usr/share/assimp/models/glTF2'
 d = bt.Daemon(binary, assets, ["--scene-cache-mb", "0", *sys.argv[2:]])
@@ -8,7 +11,7 @@ try:
     ok, failed = bt.renderable(d, bt.find_assets(assets), 256)
     batch = ok * 3
     d.thumbnails(batch, 256)
-    rec = subprocess.Popen(["perf", "record", "-q", "-a", "-o", "/tmp/s17/sw.data", "-e", "sched:sched_switch", "-m", "4096"],
+    rec = subprocess.Popen(["perf", "record", "-q", "-a", "-o", "/tmp/idle_who.data", "-e", "sched:sched_switch", "-m", "4096"],
                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     time.sleep(1.0)
     t0 = time.clock_gettime(time.CLOCK_MONOTONIC)
@@ -24,7 +27,7 @@ try:
 finally:
     d.stop()
 print(f"{2*len(batch)/(t1-t0):.1f}/s")
-out = subprocess.run(["perf", "script", "-i", "/tmp/s17/sw.data", "-F", "cpu,time,trace"], capture_output=True, text=True).stdout
+out = subprocess.run(["perf", "script", "-i", "/tmp/idle_who.data", "-F", "cpu,time,trace"], capture_output=True, text=True).stdout
 sw = re.compile(r"\[(\d+)\]\s+([\d.]+):\s+prev_comm=(.*?) prev_pid=(\d+) .*?prev_state=(\S+) ==> next_comm=(.*?) next_pid=(\d+)")
 ev = []
 for line in out.splitlines():

@@ -1,3 +1,6 @@
+// Seventeenth session: how long a thread pinned on CPU 1 takes to wake after a condition
+// variable signal from CPU 0, its core idle (or, with an argument, running a SCHED_IDLE
+// spinner): gcc -O2 -pthread wl.c -o wl && ./wl && ./wl spin
 #define _GNU_SOURCE
 #include <pthread.h>
 #include <stdio.h>
