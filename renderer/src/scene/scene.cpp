@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <tuple>
+#include <unordered_map>
+#include <vector>
 
 namespace lgh {
 namespace {
@@ -12,6 +14,18 @@ const Mesh* meshOf(const Scene& scene, const MeshInstance& instance) {
     return nullptr;
   }
   return &scene.meshes[static_cast<std::size_t>(instance.mesh)];
+}
+
+// The vertices `primitive`'s indices refer to, each once (out-of-range indices left out).
+std::vector<std::uint32_t> referencedVertices(const Primitive& primitive) {
+  std::vector<bool> seen(primitive.vertices.size(), false);
+  std::vector<std::uint32_t> vertices;
+  for (std::uint32_t index : primitive.indices) {
+    if (index >= seen.size() || seen[index]) continue;
+    seen[index] = true;
+    vertices.push_back(index);
+  }
+  return vertices;
 }
 
 std::size_t meshTriangles(const Mesh& mesh) {
@@ -41,15 +55,19 @@ std::size_t Scene::lineAndPointPrimitiveCount() const {
 
 // Exact world-space bounds: every referenced vertex of every instance, transformed. Transforming
 // the corners of each mesh's local box would be cheaper but loose under rotation, and the bounds
-// drive automatic camera framing and the LGH grid.
+// drive automatic camera framing and the LGH grid. Each primitive's referenced vertices are found
+// once, and each instance transforms those alone rather than a vertex per index (a vertex is
+// shared by about six triangles in a smooth mesh).
 void Scene::computeBounds() {
   bounds = Bounds{};
+  std::unordered_map<const Primitive*, std::vector<std::uint32_t>> referenced;
   for (const MeshInstance& instance : instances) {
     const Mesh* mesh = meshOf(*this, instance);
     if (mesh == nullptr) continue;
     forEachPrimitive(*mesh, [&](const Primitive& primitive) {
-      for (std::uint32_t index : primitive.indices) {
-        if (index >= primitive.vertices.size()) continue;
+      auto [found, added] = referenced.try_emplace(&primitive);
+      if (added) found->second = referencedVertices(primitive);
+      for (std::uint32_t index : found->second) {
         const glm::vec4 world =
             instance.world * glm::vec4(primitive.vertices[index].position, 1.0F);
         bounds.extend(glm::vec3(world));
