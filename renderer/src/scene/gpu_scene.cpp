@@ -44,14 +44,16 @@ glm::vec3 GpuScene::centreOf(const DrawItem& item) {
   return glm::vec3(item.world * glm::vec4(bounds.center(), 1.0F));
 }
 
-GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, const StagedScene* staged)
-    : GpuScene(scene, options, VertexArraysLater{}, staged) {
+GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, const StagedScene* staged,
+                   SceneMipChains* mipChains)
+    : GpuScene(scene, options, VertexArraysLater{}, staged, mipChains) {
   makeVertexArrays();
 }
 
 GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArraysLater /*later*/,
-                   const StagedScene* staged)
-    : scene_(scene),
+                   const StagedScene* staged, SceneMipChains* mipChains)
+    : aheadMipChains_(mipChains),
+      scene_(scene),
       options_(options),
       capabilities_(options.capabilities ? *options.capabilities : TextureCapabilities::query()) {
   const GeometryLayout layout = geometryLayout(scene);
@@ -76,6 +78,7 @@ GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArr
       texture(*slot.texture, slot.usage, staged);
     }
   }
+  aheadMipChains_ = nullptr;  // what a later frame's overrides sample builds its own levels
 }
 
 GpuScene::~GpuScene() = default;
@@ -210,9 +213,14 @@ const GpuScene::UploadedImage* GpuScene::imageTexture(int image, TextureUsage us
       stagedPixels = StagedPixels{staged->buffer, at->second};
     }
   }
-  UploadedTexture uploaded =
-      uploadTexture(pixels, precompressed, kind, options_.compression, capabilities_, warnings_,
-                    stagedPixels ? &*stagedPixels : nullptr, options_.recycledTextures.get());
+  const std::vector<Image8>* mipChain = nullptr;
+  if (aheadMipChains_ != nullptr) {
+    const auto built = aheadMipChains_->find({image, kind == TextureUsage::Color});
+    if (built != aheadMipChains_->end()) mipChain = &built->second;
+  }
+  UploadedTexture uploaded = uploadTexture(
+      pixels, precompressed, kind, options_.compression, capabilities_, warnings_,
+      stagedPixels ? &*stagedPixels : nullptr, options_.recycledTextures.get(), mipChain);
   textureBytes_ += uploaded.bytes;
   memory_.bytes += uploaded.bytes;
   memory_.uncompressedBytes += uploaded.uncompressedBytes;

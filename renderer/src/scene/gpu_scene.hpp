@@ -22,6 +22,7 @@
 #include "gl/recycled_objects.hpp"
 #include "scene/geometry_layout.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_mip_chains.hpp"
 #include "scene/staged_scene.hpp"
 #include "scene/texture_upload.hpp"
 
@@ -43,8 +44,10 @@ class GpuScene {
  public:
   // Keeps a reference to `scene` (its images upload on first use): the cache entry owns both.
   // `staged` (may be null): the scene's bytes in staging memory, read by the GPU copies this
-  // issues; the caller retires its region after construction.
-  GpuScene(const Scene& scene, const GpuSceneOptions& options, const StagedScene* staged = nullptr);
+  // issues; the caller retires its region after construction. `mipChains` (may be null): the
+  // textures' CPU-built levels made ahead (scene/scene_mip_chains.hpp), read during construction.
+  GpuScene(const Scene& scene, const GpuSceneOptions& options, const StagedScene* staged = nullptr,
+           SceneMipChains* mipChains = nullptr);
   ~GpuScene();
   GpuScene(const GpuScene&) = delete;
   GpuScene& operator=(const GpuScene&) = delete;
@@ -114,7 +117,7 @@ class GpuScene {
  private:
   struct VertexArraysLater {};
   GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArraysLater later,
-           const StagedScene* staged = nullptr);
+           const StagedScene* staged = nullptr, SceneMipChains* mipChains = nullptr);
   void makeVertexArrays();
 
   struct UploadedImage {
@@ -134,6 +137,8 @@ class GpuScene {
   gl::RecycledBuffer takeBuffer(GLsizeiptr bytes);
   static constexpr GLsizeiptr kMaxRecycledBufferBytes = GLsizeiptr{16} << 20;
 
+  // The levels made ahead, while the constructor uploads the materials' textures.
+  SceneMipChains* aheadMipChains_ = nullptr;
   const Scene& scene_;
   GpuSceneOptions options_;
   TextureCapabilities capabilities_;

@@ -386,6 +386,12 @@ void SceneCache::startPrefetch(const std::string& key, std::shared_ptr<const Sce
          aheadBytes = &uploadedAheadBytes_, staging = staging_.get()]() mutable {
           Parsed parsed = parse(rendererOptions, parsers, *source, options, std::move(turn));
           if (glWorker != nullptr) uploadAhead(parsed, *glWorker, uploadOptions, *aheadBytes);
+          // Off the render thread, which on a CPU rasteriser would build them while it uploads.
+          if (glWorker == nullptr && uploadOptions.capabilities &&
+              uploadOptions.capabilities->mipmapsOnCpu &&
+              options.textureCompression == TextureCompression::None) {
+            parsed.mipChains = buildSceneMipChains(parsed.entry->scene);
+          }
           if (staging != nullptr) {
             stage(parsed, *staging, options.textureCompression,
                   rendererOptions.uploadStagingMinBytes);
@@ -462,7 +468,7 @@ SceneCache::Lookup SceneCache::get(const SceneSource& source, const SceneLoadOpt
               entry->scene,
               GpuSceneOptions{maxAnisotropy_, options.textureCompression, textureCapabilities_,
                               recycledTextures_, recycledBuffers_},
-              staged),
+              staged, &parsed.mipChains),
           GpuSceneDeleter(glWorker_.get()));
     } catch (...) {
       // Copies from the region may have been issued before the failure.

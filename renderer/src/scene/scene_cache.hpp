@@ -26,6 +26,7 @@
 #include "scene/gltf/gltf_loader.hpp"
 #include "scene/gpu_scene.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_mip_chains.hpp"
 #include "scene/staged_scene.hpp"
 #include "scene/worker/scene_worker_pool.hpp"
 #include "vk/shadow_tracer.hpp"
@@ -181,6 +182,7 @@ class SceneCache {
     double uploadMs = -1.0;  // the upload ahead's wall time on the GL worker (< 0: none)
     AheadReservation uploadedAhead;
     std::optional<StagedScene> staged;  // its bytes in staging memory (none: no room, or off)
+    SceneMipChains mipChains;  // a CPU rasteriser's texture levels, built on the prefetch thread
   };
   // On a prefetch thread: the parsed scene's upload on the GL worker, when its bytes fit.
   static void uploadAhead(Parsed& parsed, gl::Worker& worker, const GpuSceneOptions& options,

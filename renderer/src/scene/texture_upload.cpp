@@ -95,7 +95,8 @@ void setLevelRange(GLuint texture, int levels) {
 }
 
 UploadedTexture uploadPlain(const Image8& image, bool srgb, bool mipmapsOnCpu,
-                            const StagedPixels* staged, gl::RecycledTextures* recycled) {
+                            const StagedPixels* staged, gl::RecycledTextures* recycled,
+                            const std::vector<Image8>* mipChain) {
   UploadedTexture result;
   const int levels = mipLevels(image.width, image.height);
   result.bytes = rgba8Bytes(image.width, image.height, levels);
@@ -114,7 +115,9 @@ UploadedTexture uploadPlain(const Image8& image, bool srgb, bool mipmapsOnCpu,
                         image.pixels.data());
   }
   if (mipmapsOnCpu) {
-    const std::vector<Image8> chain = buildBlitMipChain(image, srgb);
+    const std::vector<Image8> built =
+        mipChain == nullptr ? buildBlitMipChain(image, srgb) : std::vector<Image8>{};
+    const std::vector<Image8>& chain = mipChain == nullptr ? built : *mipChain;
     for (std::size_t i = 0; i < chain.size(); ++i) {
       const Image8& level = chain[i];
       glTextureSubImage2D(id, static_cast<GLint>(i + 1), 0, 0, level.width, level.height, GL_RGBA,
@@ -271,7 +274,7 @@ UploadedTexture uploadTexture(const Image8& image, const BlockCompressedImage* p
                               TextureUsage usage, TextureCompression compression,
                               const TextureCapabilities& capabilities,
                               std::vector<std::string>& warnings, const StagedPixels* staged,
-                              gl::RecycledTextures* recycled) {
+                              gl::RecycledTextures* recycled, const std::vector<Image8>* mipChain) {
   const bool srgb = usage == TextureUsage::Color;
   if (precompressed != nullptr) {
     const bool colorBlocks = precompressed->format <= BlockFormat::Bc3;
@@ -295,7 +298,7 @@ UploadedTexture uploadTexture(const Image8& image, const BlockCompressedImage* p
       return uploadCompressing(image, format, srgb);
     }
   }
-  return uploadPlain(image, srgb, capabilities.mipmapsOnCpu, staged, recycled);
+  return uploadPlain(image, srgb, capabilities.mipmapsOnCpu, staged, recycled, mipChain);
 }
 
 }  // namespace lgh

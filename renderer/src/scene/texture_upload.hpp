@@ -46,7 +46,9 @@ struct StagedPixels {
 
 // `precompressed` (may be null): the image's blocks as loaded. `staged` (may be null): used when
 // the texture is uploaded as decoded RGBA8. `recycled` (may be null): where an RGBA8 texture
-// takes its storage (block-compressed ones have storage of their own). Throws lgh::Error(Internal)
+// takes its storage (block-compressed ones have storage of their own). `mipChain` (may be null):
+// on a CPU rasteriser, the levels below 0 built ahead (scene/scene_mip_chains.hpp), else built
+// here. Throws lgh::Error(Internal)
 // when the driver refuses a compressed upload it claims to support. Warnings (a usage the blocks
 // cannot serve, a format the device lacks) go to `warnings`.
 UploadedTexture uploadTexture(const Image8& image, const BlockCompressedImage* precompressed,
@@ -54,7 +56,8 @@ UploadedTexture uploadTexture(const Image8& image, const BlockCompressedImage* p
                               const TextureCapabilities& capabilities,
                               std::vector<std::string>& warnings,
                               const StagedPixels* staged = nullptr,
-                              gl::RecycledTextures* recycled = nullptr);
+                              gl::RecycledTextures* recycled = nullptr,
+                              const std::vector<Image8>* mipChain = nullptr);
 
 // The mip chain of `image` below level 0, halving to 1 x 1 (2x2 box filter; `srgb`: averaged in
 // linear light): the levels that compression on upload encodes.
