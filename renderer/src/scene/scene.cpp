@@ -133,6 +133,21 @@ std::array<MaterialTextureSlot, kMaterialTextureSlots> materialTextureSlots(cons
   }};
 }
 
+std::vector<std::pair<int, TextureUsage>> sampledRgba8Images(const Scene& scene) {
+  std::vector<std::pair<int, TextureUsage>> sampled;
+  for (const Material& material : scene.materials) {
+    for (const MaterialTextureSlot& slot : materialTextureSlots(material)) {
+      const int image = slot.texture->image;
+      if (image < 0 || static_cast<std::size_t>(image) >= scene.images.size()) continue;
+      const Image8& pixels = scene.images[static_cast<std::size_t>(image)];
+      if (pixels.width <= 0 || pixels.height <= 0 || pixels.channels != 4) continue;
+      if (scene.compressedImages.count(image) != 0) continue;
+      sampled.emplace_back(image, slot.usage);
+    }
+  }
+  return sampled;
+}
+
 bool Sampler::operator<(const Sampler& other) const {
   auto key = [](const Sampler& s) {
     return std::make_tuple(s.magFilter, s.minFilter, s.wrapS, s.wrapT, s.borderColor.r,

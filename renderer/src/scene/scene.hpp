@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -286,5 +287,10 @@ struct Scene {
   std::size_t lineAndPointPrimitiveCount() const;
   void computeBounds();
 };
+
+// Every (image, usage) the scene's materials sample that exists as RGBA8 pixels and did not arrive
+// block-compressed: what an upload without texture compression makes textures of, in material and
+// slot order (an image may come more than once).
+std::vector<std::pair<int, TextureUsage>> sampledRgba8Images(const Scene& scene);
 
 }  // namespace lgh

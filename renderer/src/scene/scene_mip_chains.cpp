@@ -6,17 +6,11 @@ namespace lgh {
 
 SceneMipChains buildSceneMipChains(const Scene& scene) {
   SceneMipChains chains;
-  for (const Material& material : scene.materials) {
-    for (const MaterialTextureSlot& slot : materialTextureSlots(material)) {
-      const int image = slot.texture->image;
-      if (image < 0 || static_cast<std::size_t>(image) >= scene.images.size()) continue;
-      const Image8& pixels = scene.images[static_cast<std::size_t>(image)];
-      if (pixels.width <= 0 || pixels.height <= 0 || pixels.channels != 4) continue;
-      if (scene.compressedImages.count(image) != 0) continue;
-      const bool srgb = slot.usage == TextureUsage::Color;
-      auto [chain, added] = chains.try_emplace({image, srgb});
-      if (added) chain->second = buildBlitMipChain(pixels, srgb);
-    }
+  for (const auto& [image, usage] : sampledRgba8Images(scene)) {
+    const bool srgb = usage == TextureUsage::Color;
+    auto [chain, added] = chains.try_emplace({image, srgb});
+    if (!added) continue;  // read with the same encoding by another slot
+    chain->second = buildBlitMipChain(scene.images[static_cast<std::size_t>(image)], srgb);
   }
   return chains;
 }

@@ -13,16 +13,7 @@ namespace {
 std::set<int> plainImages(const Scene& scene, TextureCompression compression) {
   std::set<int> images;
   if (compression != TextureCompression::None) return images;
-  for (const Material& material : scene.materials) {
-    for (const MaterialTextureSlot& slot : materialTextureSlots(material)) {
-      const int image = slot.texture->image;
-      if (image < 0 || static_cast<std::size_t>(image) >= scene.images.size()) continue;
-      const Image8& pixels = scene.images[static_cast<std::size_t>(image)];
-      if (pixels.width <= 0 || pixels.height <= 0 || pixels.channels != 4) continue;
-      if (scene.compressedImages.count(image) != 0) continue;
-      images.insert(image);
-    }
-  }
+  for (const auto& [image, usage] : sampledRgba8Images(scene)) images.insert(image);
   return images;
 }
 
