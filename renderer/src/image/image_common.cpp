@@ -105,13 +105,11 @@ const SrgbEncoder& srgbEncoder() {
   return encoder;
 }
 
-std::uint8_t encodeSrgb8(float linear01) { return srgbEncoder().encode(linear01); }
-
 std::uint8_t displayChannel(float linear, ToneMap mode, float exposure) {
   float value = linear * exposure;
   // !(value > 0) also catches NaN.
   value = !(value > 0.0F) ? 0.0F : std::min(value, kMaxLinear);
-  return encodeSrgb8(std::clamp(toneMap(value, mode), 0.0F, 1.0F));
+  return image_io::detail::srgbCode(std::clamp(toneMap(value, mode), 0.0F, 1.0F));
 }
 
 std::uint8_t linearAlpha8(float alpha) {

@@ -45,13 +45,13 @@ glm::vec3 GpuScene::centreOf(const DrawItem& item) {
 }
 
 GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, const StagedScene* staged,
-                   SceneMipChains* mipChains)
+                   const SceneMipChains* mipChains)
     : GpuScene(scene, options, VertexArraysLater{}, staged, mipChains) {
   makeVertexArrays();
 }
 
 GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArraysLater /*later*/,
-                   const StagedScene* staged, SceneMipChains* mipChains)
+                   const StagedScene* staged, const SceneMipChains* mipChains)
     : aheadMipChains_(mipChains),
       scene_(scene),
       options_(options),
@@ -78,7 +78,9 @@ GpuScene::GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArr
       texture(*slot.texture, slot.usage, staged);
     }
   }
-  aheadMipChains_ = nullptr;  // what a later frame's overrides sample builds its own levels
+  // The chains belong to the caller and end with it; a texture uploaded later (one a frame's
+  // material overrides sample) builds its own levels.
+  aheadMipChains_ = nullptr;
 }
 
 GpuScene::~GpuScene() = default;
@@ -195,9 +197,9 @@ gl::RecycledBuffer GpuScene::takeBuffer(GLsizeiptr bytes) {
 
 const GpuScene::UploadedImage* GpuScene::imageTexture(int image, TextureUsage usage,
                                                       const StagedScene* staged) {
-  if (image < 0 || static_cast<size_t>(image) >= scene_.images.size()) return nullptr;
-  const Image8& pixels = scene_.images[static_cast<size_t>(image)];
-  if (pixels.width <= 0 || pixels.height <= 0 || pixels.channels != 4) return nullptr;
+  const Image8* rgba8 = scene_.rgba8Image(image);
+  if (rgba8 == nullptr) return nullptr;
+  const Image8& pixels = *rgba8;
   const auto blocks = scene_.compressedImages.find(image);
   const BlockCompressedImage* precompressed =
       blocks == scene_.compressedImages.end() ? nullptr : &blocks->second;

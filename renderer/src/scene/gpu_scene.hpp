@@ -47,7 +47,7 @@ class GpuScene {
   // issues; the caller retires its region after construction. `mipChains` (may be null): the
   // textures' CPU-built levels made ahead (scene/scene_mip_chains.hpp), read during construction.
   GpuScene(const Scene& scene, const GpuSceneOptions& options, const StagedScene* staged = nullptr,
-           SceneMipChains* mipChains = nullptr);
+           const SceneMipChains* mipChains = nullptr);
   ~GpuScene();
   GpuScene(const GpuScene&) = delete;
   GpuScene& operator=(const GpuScene&) = delete;
@@ -117,7 +117,7 @@ class GpuScene {
  private:
   struct VertexArraysLater {};
   GpuScene(const Scene& scene, const GpuSceneOptions& options, VertexArraysLater later,
-           const StagedScene* staged = nullptr, SceneMipChains* mipChains = nullptr);
+           const StagedScene* staged = nullptr, const SceneMipChains* mipChains = nullptr);
   void makeVertexArrays();
 
   struct UploadedImage {
@@ -138,7 +138,7 @@ class GpuScene {
   static constexpr GLsizeiptr kMaxRecycledBufferBytes = GLsizeiptr{16} << 20;
 
   // The levels made ahead, while the constructor uploads the materials' textures.
-  SceneMipChains* aheadMipChains_ = nullptr;
+  const SceneMipChains* aheadMipChains_ = nullptr;
   const Scene& scene_;
   GpuSceneOptions options_;
   TextureCapabilities capabilities_;

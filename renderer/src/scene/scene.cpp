@@ -53,6 +53,13 @@ std::size_t Scene::lineAndPointPrimitiveCount() const {
   return count;
 }
 
+const Image8* Scene::rgba8Image(int image) const {
+  if (image < 0 || static_cast<std::size_t>(image) >= images.size()) return nullptr;
+  const Image8& pixels = images[static_cast<std::size_t>(image)];
+  if (pixels.width <= 0 || pixels.height <= 0 || pixels.channels != 4) return nullptr;
+  return &pixels;
+}
+
 // Exact world-space bounds: every referenced vertex of every instance, transformed. Transforming
 // the corners of each mesh's local box would be cheaper but loose under rotation, and the bounds
 // drive automatic camera framing and the LGH grid. Each primitive's referenced vertices are found
@@ -138,10 +145,7 @@ std::vector<std::pair<int, TextureUsage>> sampledRgba8Images(const Scene& scene)
   for (const Material& material : scene.materials) {
     for (const MaterialTextureSlot& slot : materialTextureSlots(material)) {
       const int image = slot.texture->image;
-      if (image < 0 || static_cast<std::size_t>(image) >= scene.images.size()) continue;
-      const Image8& pixels = scene.images[static_cast<std::size_t>(image)];
-      if (pixels.width <= 0 || pixels.height <= 0 || pixels.channels != 4) continue;
-      if (scene.compressedImages.count(image) != 0) continue;
+      if (scene.rgba8Image(image) == nullptr || scene.compressedImages.count(image) != 0) continue;
       sampled.emplace_back(image, slot.usage);
     }
   }

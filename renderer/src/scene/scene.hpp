@@ -283,6 +283,9 @@ struct Scene {
   std::vector<std::string> warnings;  // repairs made while loading (shown in the result)
 
   std::size_t triangleCount() const;
+  // Image `image` when it exists as RGBA8 pixels (the only layout textures are uploaded from),
+  // else null.
+  const Image8* rgba8Image(int image) const;
   // Lines and points as drawn (instances count), for the result's statistics.
   std::size_t lineAndPointPrimitiveCount() const;
   void computeBounds();

@@ -10,7 +10,7 @@ SceneMipChains buildSceneMipChains(const Scene& scene) {
     const bool srgb = usage == TextureUsage::Color;
     auto [chain, added] = chains.try_emplace({image, srgb});
     if (!added) continue;  // read with the same encoding by another slot
-    chain->second = buildBlitMipChain(scene.images[static_cast<std::size_t>(image)], srgb);
+    chain->second = buildBlitMipChain(*scene.rgba8Image(image), srgb);
   }
   return chains;
 }
