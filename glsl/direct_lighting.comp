@@ -32,6 +32,10 @@ layout(binding = LGH_IMAGE_OUTPUT, rgba16f) writeonly uniform image2D uRadiance;
 #endif
 
 layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
+// The dispatch covers the tiles from uFirstTile on: all of them, or where the output was cleared
+// before, those that can show a surface (passes/surface_tiles.hpp).
+uniform uvec2 uFirstTile;
+#define LGH_FIRST_TILE uFirstTile
 #include "include/balanced_tiles.glsl"  // after the work-group size
 
 uniform int uLightCount;

@@ -26,6 +26,10 @@ uniform int uFirstLight;
 #endif
 
 layout(local_size_x = LGH_GROUP_2D, local_size_y = LGH_GROUP_2D) in;
+// The dispatch covers the tiles from uFirstTile on: all of them, or where the output was cleared
+// before, those that can show a surface (passes/surface_tiles.hpp).
+uniform uvec2 uFirstTile;
+#define LGH_FIRST_TILE uFirstTile
 #include "include/balanced_tiles.glsl"  // after the work-group size
 
 layout(std430, binding = LGH_BIND_LIGHTS) readonly buffer Lights { Light lights[]; };

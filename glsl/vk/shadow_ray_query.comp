@@ -1,5 +1,6 @@
 #version 460
-// Shadow rays by ray query: one invocation per pixel, 8 x 8 pixels per work group.
+// Shadow rays by ray query: one invocation per pixel, 8 x 8 pixels per work group, over the
+// batch's tiles where it names them (the words of every other pixel were zeroed).
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
@@ -7,6 +8,8 @@
 #include "include/shadow_rays.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
+// The launch covers the batch's tiles from this one on (vk::RayBatchShape::tiles).
+#define LGH_FIRST_TILE uvec2(trace.firstTileX, trace.firstTileY)
 #include "include/balanced_tiles.glsl"  // after the work-group size
 
 bool traceShadowRay(ShadowRay ray) {

@@ -151,7 +151,8 @@ std::optional<RemainingPasses> FramePipeline::drawInto(FrameSet& set, const Rend
                       .depthPrepass = request.settings.depthPrepass,
                       .writeLayers = brdf.usesLayersTarget(),
                       .writeEmissive = remaining.emission,
-                      .clearEveryTarget = probe != nullptr},
+                      .clearEveryTarget = probe != nullptr,
+                      .sceneBounds = &cached.scene.bounds},
                      *cached.gpu, targets);
   }
   LghFrameLighting::ShadowSamples samples;

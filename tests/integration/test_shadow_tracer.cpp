@@ -468,6 +468,38 @@ TEST_F(ShadowTracerTest, BothPathsSetTheSameBitsWhateverTheRowsOfTiles) {
   }
 }
 
+// A batch that names the tiles its rays lie in (RayBatchShape::tiles, the frame's surface tiles):
+// the ray-query path launches those tiles alone and every other pixel's words are zero, so each
+// path and the untiled batch set the same bits, at offsets in both axes and for no tile at all.
+TEST_F(ShadowTracerTest, ABatchThatNamesItsTilesGetsTheBitsOfTheWholeBatch) {
+  for (const auto& [first, count] : {std::pair{std::array{1U, 2U}, std::array{3U, 1U}},
+                                     std::pair{std::array{0U, 0U}, std::array{5U, 4U}},
+                                     std::pair{std::array{4U, 3U}, std::array{1U, 1U}},
+                                     std::pair{std::array{2U, 1U}, std::array{0U, 0U}}}) {
+    Batch batch = randomBatch(37, 29, 2);  // 5 x 4 tiles, the last column and row in part
+    for (std::uint32_t y = 0; y < 29; ++y) {
+      for (std::uint32_t x = 0; x < 37; ++x) {
+        const bool inTiles = x / 8 >= first[0] && x / 8 < first[0] + count[0] &&
+                             y / 8 >= first[1] && y / 8 < first[1] + count[1];
+        if (!inTiles) batch.origins[std::size_t{y} * 37 + x].w = 0.0F;
+      }
+    }
+    const auto whole = trace(anyPath(), *box, batch);
+    Batch tiled = batch;
+    tiled.shape.tiles = lgh::vk::RayTiles{.first = first, .count = count};
+    for (const TracePath path : {TracePath::RayQuery, TracePath::Pipeline}) {
+      if (!tracer->supports(path)) continue;
+      const auto words = trace(path, *box, tiled);
+      ASSERT_EQ(words, whole) << lgh::enumName(path) << " tiles from " << first[0] << ", "
+                              << first[1] << ": " << count[0] << " x " << count[1];
+    }
+    int lit = 0;
+    for (const std::uint32_t word : whole) lit += std::popcount(word);
+    if (count[0] * count[1] > 0) EXPECT_GT(lit, 0) << "rays in the tiles reach their lights";
+    if (count[0] * count[1] == 0) EXPECT_EQ(lit, 0) << "no pixel has rays";
+  }
+}
+
 TEST_F(ShadowTracerTest, StagingBuffersGrowOnlyAndEachReallocationIsANewGeneration) {
   const auto& first =
       tracer->rayBuffers({.width = 64, .height = 64, .raysPerPixel = 8}, Transport::Staging);
@@ -548,6 +580,13 @@ TEST_F(ShadowTracerTest, BadBatchesAreRefused) {
   tracer->rayBuffers({.width = 4, .height = 4, .raysPerPixel = 1}, Transport::Staging);
   expectCode(lgh::ErrorCode::Invalid, [] {
     tracer->trace(*box, anyPath(), {.width = 1024, .height = 1024, .raysPerPixel = 1}, {}, false);
+  });
+  expectCode(lgh::ErrorCode::Invalid, [] {  // tiles 3 and 4 of a batch 3 tiles wide
+    tracer->rayBuffers({.width = 20,
+                        .height = 4,
+                        .raysPerPixel = 1,
+                        .tiles = lgh::vk::RayTiles{.first = {1, 0}, .count = {3, 1}}},
+                       Transport::Staging);
   });
 }
 

@@ -17,6 +17,8 @@ layout(push_constant, std430) uniform TraceConstants {
   float tMin;
   float tMaxInfinite;
   float endEpsilon;
+  uint firstTileX;  // the launch's first tile (the ray-query path's tiles; 0 otherwise)
+  uint firstTileY;
 } trace;
 
 // Every shadow ray is opaque and done at its first hit: any hit means occluded.

@@ -39,7 +39,7 @@ void DirectLightingPass::run(const DirectLightingInputs& inputs, const CameraMat
   const GLuint program = this->program(inputs.brdf, std::nullopt);
   glBindImageTexture(LGH_IMAGE_OUTPUT, targets.direct.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
                      GL_RGBA16F);
-  dispatch(program, inputs, camera, targets);
+  dispatch(program, inputs, camera, targets, allTiles(targets.width, targets.height));
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
@@ -48,7 +48,9 @@ void DirectLightingPass::runToOutput(const DirectLightingInputs& inputs,
                                      OutputPixels pixels, FrameTargets& targets) {
   const GLuint program = this->program(inputs.brdf, pixels);
   bindFrameOutput(program, output, pixels, targets, clearsBackground_);
-  dispatch(program, inputs, camera, targets);
+  // Over a cleared output the tiles without a surface have nothing to store.
+  dispatch(program, inputs, camera, targets,
+           clearsBackground_ ? targets.tilesWithSurfaces() : allTiles(targets.width, targets.height));
   // Read next by the pixel pack pass or a read-back, as the composite's output is.
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                   GL_PIXEL_BUFFER_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
@@ -56,7 +58,8 @@ void DirectLightingPass::runToOutput(const DirectLightingInputs& inputs,
 }
 
 void DirectLightingPass::dispatch(GLuint program, const DirectLightingInputs& inputs,
-                                  const CameraMatrices& camera, FrameTargets& targets) {
+                                  const CameraMatrices& camera, FrameTargets& targets,
+                                  const FrameTiles& tiles) {
   glUseProgram(program);
   glProgramUniform1i(program, glGetUniformLocation(program, "uLightCount"), inputs.lightCount);
   glProgramUniform1i(program, glGetUniformLocation(program, "uFrameWidth"), targets.width);
@@ -70,7 +73,7 @@ void DirectLightingPass::dispatch(GLuint program, const DirectLightingInputs& in
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_LIGHTS, inputs.lights);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_VISIBILITY, inputs.visibility);
   bindGBuffer(targets.gbuffer);
-  glDispatchCompute(gl::groups2D(targets.width), gl::groups2D(targets.height), 1);
+  dispatchTiles(program, tiles);
 }
 
 }  // namespace lgh

@@ -46,7 +46,7 @@ class DirectLightingPass {
  private:
   GLuint program(const BrdfFeatures& brdf, const std::optional<OutputPixels>& finalOutput);
   void dispatch(GLuint program, const DirectLightingInputs& inputs, const CameraMatrices& camera,
-                FrameTargets& targets);
+                FrameTargets& targets, const FrameTiles& tiles);
 
   // By BrdfFeatures::defines() and the output written (none: FrameTargets::direct), built on
   // first use.

@@ -36,6 +36,7 @@ gl::Framebuffer singleTargetFramebuffer(const gl::Texture& color, const char* na
 
 void FrameTargets::resize(int newWidth, int newHeight) {
   if (newWidth == width && newHeight == height) return;
+  surfaceTiles.reset();
   width = newWidth;
   height = newHeight;
   gbuffer.position = makeTarget(GL_RGBA32F, width, height);

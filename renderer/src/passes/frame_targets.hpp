@@ -3,8 +3,10 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
 #include "gl/gl_objects.hpp"
+#include "passes/surface_tiles.hpp"
 
 namespace lgh {
 
@@ -36,6 +38,11 @@ struct FrameTargets {
   int width = 0;
   int height = 0;
   GBufferTargets gbuffer;
+  // The work-group tiles the G-buffer's surfaces can cover, as the G-buffer pass found them for
+  // the frame it drew last (none known: every tile; a G-buffer written otherwise, as tests do,
+  // leaves it so): passes whose output was cleared beforehand dispatch these alone.
+  std::optional<FrameTiles> surfaceTiles;
+  FrameTiles tilesWithSurfaces() const { return surfaceTiles.value_or(allTiles(width, height)); }
   gl::Texture direct{GL_TEXTURE_2D};  // RGBA16F: direct lighting radiance
   gl::Framebuffer directFramebuffer;
   gl::Texture indirect{GL_TEXTURE_2D};  // RGBA16F: LGH lighting radiance

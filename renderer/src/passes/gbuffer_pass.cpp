@@ -1,5 +1,6 @@
 #include "passes/gbuffer_pass.hpp"
 
+#include <algorithm>
 #include <array>
 #include <set>
 
@@ -14,6 +15,7 @@ GBufferPass::GBufferPass() {
 }
 
 void GBufferPass::run(const Inputs& inputs, GpuScene& gpuScene, FrameTargets& targets) {
+  targets.surfaceTiles = surfaceTilesOf(inputs, gpuScene, targets);
   glBindFramebuffer(GL_FRAMEBUFFER, targets.gbuffer.framebuffer.id());
   glViewport(0, 0, targets.width, targets.height);
   prepareTargets(inputs, targets);
@@ -39,6 +41,21 @@ void GBufferPass::run(const Inputs& inputs, GpuScene& gpuScene, FrameTargets& ta
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_FRAMEBUFFER_SRGB);
   unbindMaterialSamplers();
+}
+
+FrameTiles GBufferPass::surfaceTilesOf(const Inputs& inputs, const GpuScene& gpuScene,
+                                       const FrameTargets& targets) {
+  const FrameTiles all = allTiles(targets.width, targets.height);
+  if (inputs.sceneBounds == nullptr) return all;
+  // Displacement moves surfaces off the positions the bounds were taken over.
+  const bool displaced =
+      std::ranges::any_of(gpuScene.drawItems(), [&](const GpuScene::DrawItem& item) {
+        return surfaceProgramKey(inputs.materials->at(item.material), item, false).displaced;
+      });
+  if (displaced) return all;
+  const float margin = 0.5F * std::max(inputs.primitives->pointSize, inputs.primitives->lineWidth);
+  return surfaceTiles(*inputs.sceneBounds, inputs.camera->viewProjection(), targets.width,
+                      targets.height, margin);
 }
 
 void GBufferPass::prepareTargets(const Inputs& inputs, FrameTargets& targets) {

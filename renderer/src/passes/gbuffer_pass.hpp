@@ -4,7 +4,8 @@
 //            shading light vertices and primitives here; relief mapping's self-shadowing), how
 //            points and lines are drawn (settings.primitives)
 //   outputs: FrameTargets::gbuffer (position, normal, albedo, material, emissive, layers, depth);
-//            blended surfaces (alphaMode BLEND) are left to ForwardBlendPass
+//            blended surfaces (alphaMode BLEND) are left to ForwardBlendPass;
+//            FrameTargets::surfaceTiles, the tiles its surfaces can cover (from the scene's bounds)
 //   shaders: glsl/gbuffer.vert, glsl/gbuffer.frag (include/material_sampling.glsl); lines and
 //            points through glsl/gbuffer_lines.geom / glsl/gbuffer_points.geom, which widen them
 //            into screen-space quads; flat shading through glsl/gbuffer_flat.geom; displacement
@@ -44,6 +45,9 @@ class GBufferPass {
     bool writeLayers = true;        // BrdfFeatures::usesLayersTarget()
     bool writeEmissive = true;      // surfacesEmit()
     bool clearEveryTarget = false;  // a probe reads the targets whole, background included
+    // The world bounds of every surface drawn (Scene::bounds), from which the surface tiles
+    // come; null: every tile.
+    const Bounds* sceneBounds = nullptr;
   };
   void run(const Inputs& inputs, GpuScene& gpuScene, FrameTargets& targets);
 
@@ -54,6 +58,9 @@ class GBufferPass {
  private:
   // Picks the targets the frame writes (draw buffers) and clears the coverage and the depth.
   void prepareTargets(const Inputs& inputs, FrameTargets& targets);
+  // The tiles the frame's surfaces can cover (passes/surface_tiles.hpp).
+  static FrameTiles surfaceTilesOf(const Inputs& inputs, const GpuScene& gpuScene,
+                                   const FrameTargets& targets);
   // One draw of every opaque surface, with the depth and colour state the caller set.
   void drawOpaque(const Inputs& inputs, GpuScene& gpuScene, const FrameTargets& targets);
 

@@ -33,6 +33,10 @@ void ShadowRaySetupPass::prepareOrigins(GLuint program, GLuint origins,
   glProgramUniform1i(program, location(program, "uOriginsCleared"), clearsOrigins_ ? 1 : 0);
 }
 
+FrameTiles ShadowRaySetupPass::tilesToRun(const FrameTargets& frame) const {
+  return clearsOrigins_ ? frame.tilesWithSurfaces() : allTiles(frame.width, frame.height);
+}
+
 void ShadowRaySetupPass::run(const ShadowRaySetupInputs& inputs, const FrameTargets& frame,
                              GLuint origins, GLuint targets) {
   const GLuint program = program_.id();
@@ -48,7 +52,7 @@ void ShadowRaySetupPass::run(const ShadowRaySetupInputs& inputs, const FrameTarg
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_ORIGINS, origins);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_TARGETS, targets);
   prepareOrigins(program, origins, frame);
-  glDispatchCompute(gl::groups2D(frame.width), gl::groups2D(frame.height), 1);
+  dispatchTiles(program, tilesToRun(frame));
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
@@ -72,7 +76,7 @@ void ShadowRaySetupPass::runToPointLights(GLuint pointLights, int first, int cou
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_ORIGINS, origins);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LGH_BIND_RAY_TARGETS, targets);
   prepareOrigins(program, origins, frame);
-  glDispatchCompute(gl::groups2D(frame.width), gl::groups2D(frame.height), 1);
+  dispatchTiles(program, tilesToRun(frame));
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 

@@ -44,6 +44,8 @@ class ShadowRaySetupPass {
   // Clears the origins first where that is cheaper than the shader's stores (a CPU rasteriser);
   // tells the program whether it did.
   void prepareOrigins(GLuint program, GLuint origins, const FrameTargets& frame) const;
+  // Where the origins were cleared, the tiles that can show a surface; else every tile.
+  FrameTiles tilesToRun(const FrameTargets& frame) const;
 
   gl::Program program_;
   gl::Program pointLightProgram_ = gl::Program::empty();

@@ -5,10 +5,23 @@
 #include <fmt/format.h>
 #include <glm/glm.hpp>
 
+#include "gl/slots.hpp"
 #include "lgh/error.hpp"
 
 namespace lgh {
 namespace {
+
+static_assert(vk::kRayTileSize == LGH_GROUP_2D, "the trace's tiles are the GL passes' work groups");
+
+// Only the tiles that can show a surface have pixels with rays: the ray set-up gives every other
+// pixel none, by its stores or by the clear before them.
+vk::RayTiles rayTiles(const FrameTiles& tiles) {
+  if (tiles.empty()) return {};
+  return {.first = {static_cast<std::uint32_t>(tiles.first.x),
+                    static_cast<std::uint32_t>(tiles.first.y)},
+          .count = {static_cast<std::uint32_t>(tiles.count.x),
+                    static_cast<std::uint32_t>(tiles.count.y)}};
+}
 
 // Rays start this far (relative to the scene's size) off their surface along its normal, and
 // rays to a point end this fraction short of it (a VPL lies on a surface).
@@ -105,9 +118,9 @@ void ShadowFrame::traceRays(const ShadowFrameInputs& inputs, vk::ShadowTracer& t
                             gl::GpuTimer& timer, FrameReport& report) {
   const vk::TraceScene& accel = traceScene(tracer, scene);
   RayBatchTransport& transport = transportFor(tracer);
-  const vk::RayBatchShape shape{static_cast<std::uint32_t>(frame.width),
-                                static_cast<std::uint32_t>(frame.height),
-                                static_cast<std::uint32_t>(layout_.raysPerPixel())};
+  const vk::RayBatchShape shape{
+      static_cast<std::uint32_t>(frame.width), static_cast<std::uint32_t>(frame.height),
+      static_cast<std::uint32_t>(layout_.raysPerPixel()), rayTiles(frame.tilesWithSurfaces())};
   buffers_ = transport.prepare(shape);
   const float offset = surfaceOffset(scene.scene);
   {

@@ -15,6 +15,21 @@ namespace {
 constexpr std::uint64_t kVec4Bytes = 16;
 constexpr std::uint64_t kWordBytes = 4;
 
+void checkTiles(const RayBatchShape& shape) {
+  if (!shape.tiles) return;
+  const std::array<std::uint32_t, 2> frameTiles{(shape.width + kRayTileSize - 1) / kRayTileSize,
+                                                (shape.height + kRayTileSize - 1) / kRayTileSize};
+  for (std::size_t axis = 0; axis < 2; ++axis) {
+    const std::uint64_t end = std::uint64_t{shape.tiles->first[axis]} + shape.tiles->count[axis];
+    if (end > frameTiles[axis]) {
+      throw Error(ErrorCode::Invalid,
+                  fmt::format("ray tiles {} to {} along axis {}: a {} x {} batch has {}",
+                              shape.tiles->first[axis], end, axis, shape.width, shape.height,
+                              frameTiles[axis]));
+    }
+  }
+}
+
 }  // namespace
 
 RayBuffers RayBufferSet::describeAll(const Buffers& buffers, Transport transport,
@@ -50,6 +65,7 @@ void checkShape(const RayBatchShape& shape, std::uint64_t maxBufferBytes) {
     throw Error(ErrorCode::Invalid,
                 fmt::format("an empty ray batch ({} x {})", shape.width, shape.height));
   }
+  checkTiles(shape);
   const RayBatchBytes bytes = rayBatchBytes(shape);
   const std::uint64_t largest = std::max({bytes.origins, bytes.targets, bytes.visibility});
   if (largest > maxBufferBytes) {

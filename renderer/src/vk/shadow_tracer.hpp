@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -68,10 +69,20 @@ class TraceScene {
 //              w <  0: no ray (its bit stays 0).
 //   visibility uint32 per pixel and word, at [pixel * words + ray / 32]: bit ray % 32 is set when
 //              the ray reached its end unoccluded. Every word of every pixel is written.
+// A batch may say where its rays are: the tiles of kRayTileSize x kRayTileSize pixels outside
+// which no pixel has rays (origin w <= 0). The ray-query path, which writes zeros to every word
+// before it traces, then launches those tiles alone; the ray-tracing pipeline launches every pixel.
+inline constexpr std::uint32_t kRayTileSize = 8;
+struct RayTiles {
+  std::array<std::uint32_t, 2> first{0, 0};  // (column, row) of the first tile
+  std::array<std::uint32_t, 2> count{0, 0};  // columns and rows from there on (0: none)
+};
+
 struct RayBatchShape {
   std::uint32_t width = 0;
   std::uint32_t height = 0;
   std::uint32_t raysPerPixel = 0;  // 1..kMaxRaysPerPixel
+  std::optional<RayTiles> tiles;   // none: rays anywhere
   std::uint32_t words() const { return (raysPerPixel + 31U) / 32U; }
   std::uint64_t pixels() const { return std::uint64_t{width} * height; }
 };

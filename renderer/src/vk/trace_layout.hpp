@@ -23,8 +23,10 @@ struct TracePushConstants {
   float tMin = 0.0F;
   float tMaxInfinite = 0.0F;
   float endEpsilon = 0.0F;
+  std::uint32_t firstTileX = 0;  // the launch's first tile (RayBatchShape::tiles; ray query)
+  std::uint32_t firstTileY = 0;
 };
-static_assert(sizeof(TracePushConstants) == 28, "std430 push constants: 7 scalars");
+static_assert(sizeof(TracePushConstants) == 36, "std430 push constants: 9 scalars");
 
 // HitConstants in glsl/vk/include/hit_rays.glsl: the closest-hit batches' constants.
 struct HitPushConstants {

@@ -46,14 +46,30 @@ std::string pathNames(const TracerInfo& info) {
   return info.rayQuery ? "ray query" : "ray-tracing pipeline";
 }
 
-TracePushConstants pushConstants(const RayBatchShape& shape, const TraceParams& params) {
+// The tiles a path launches: the batch's own where the path zeroes every word first.
+std::optional<RayTiles> launchedTiles(const RayBatchShape& shape, TracePath path) {
+  return path == TracePath::RayQuery ? shape.tiles : std::nullopt;
+}
+
+TracePushConstants pushConstants(const RayBatchShape& shape, const TraceParams& params,
+                                 TracePath path) {
+  const RayTiles tiles = launchedTiles(shape, path).value_or(RayTiles{});
   return {.width = shape.width,
           .height = shape.height,
           .raysPerPixel = shape.raysPerPixel,
           .words = shape.words(),
           .tMin = params.tMin,
           .tMaxInfinite = params.tMaxInfinite,
-          .endEpsilon = params.endEpsilon};
+          .endEpsilon = params.endEpsilon,
+          .firstTileX = tiles.first[0],
+          .firstTileY = tiles.first[1]};
+}
+
+// The invocations launched: every pixel, or the tiles' pixels.
+TraceLaunch launchOf(const RayBatchShape& shape, TracePath path) {
+  const std::optional<RayTiles> tiles = launchedTiles(shape, path);
+  if (!tiles) return {.width = shape.width, .height = shape.height};
+  return {.width = tiles->count[0] * kRayTileSize, .height = tiles->count[1] * kRayTileSize};
 }
 
 // glsl/vk/shadow_ray_query.comp: one invocation per pixel in 8 x 8 groups.
@@ -251,7 +267,7 @@ class VulkanShadowTracer final : public ShadowTracer {
                          .origins = buffers.origins(),
                          .targets = buffers.targets(),
                          .visibility = buffers.visibility()});
-    const TracePushConstants constants = pushConstants(shape, params);
+    const TracePushConstants constants = pushConstants(shape, params, path);
     const std::array<::vk::Buffer, 3> shared{buffers.origins(), buffers.targets(),
                                              buffers.visibility()};
     // The ray-query shader skips SIMD groups of pixels without a surface (their words stay 0).
@@ -260,7 +276,7 @@ class VulkanShadowTracer final : public ShadowTracer {
                      {.recorder = &recorder,
                       .set = layout_.set(slot),
                       .constants = constantBytes(constants),
-                      .launch = {.width = shape.width, .height = shape.height},
+                      .launch = launchOf(shape, path),
                       .transport = buffers.shared().transport,
                       .buffers = shared,
                       .zeroed = buffers.visibility(),
