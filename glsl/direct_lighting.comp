@@ -38,7 +38,11 @@ uniform uvec2 uFirstTile;
 #define LGH_FIRST_TILE uFirstTile
 #include "include/balanced_tiles.glsl"  // after the work-group size
 
+#ifdef LGH_LIGHT_COUNT  // compiled for the frame's lights: the loop over them unrolls
+#define uLightCount LGH_LIGHT_COUNT
+#else
 uniform int uLightCount;
+#endif
 uniform vec3 uCameraPosition;
 uniform float uAmbient;
 uniform bool uHasEmission;  // else the G-buffer pass left the emissive target unwritten

@@ -7,8 +7,15 @@
 
 #include "include/slots.glsl"
 
+// A pass compiled for the frame's layout (passes/light_loops.hpp) has the first two as constants,
+// so that its loops over the lights unroll.
+#ifdef LGH_SHADOWED_LIGHTS
+#define uShadowedLights LGH_SHADOWED_LIGHTS
+#define uLightSamples LGH_LIGHT_SAMPLES
+#else
 uniform int uShadowedLights;  // direct lights with shadow rays (the first ones); 0: unshadowed
 uniform int uLightSamples;    // rays per shadowed direct light
+#endif
 uniform int uRaysPerPixel;
 uniform int uVisibilityWords;  // (uRaysPerPixel + 31) / 32
 

@@ -38,6 +38,15 @@ constexpr unsigned kUnlit = 1;
 constexpr unsigned kPhong = 2;
 constexpr unsigned kTransmission = 8;  // MATERIAL_LAYER_TRANSMISSION
 
+// How a test runs the pass, and what it wants back.
+struct Options {
+  std::vector<float>* originW = nullptr;
+  bool clearsOrigins = lgh::gl::softwareRasterizer();
+  bool unrollsLightLoops = lgh::gl::softwareRasterizer();
+  int lightSamples = 1;
+  std::vector<glm::vec4>* targets = nullptr;  // every target as written, when given
+};
+
 class ShadowRaySetup : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { context = lgh::GlContext::create(lgh::test::rendererOptions()); }
@@ -51,8 +60,7 @@ class ShadowRaySetup : public ::testing::Test {
   // start out holding 9s, so that a pixel whose origin the pass leaves alone shows.
   static std::vector<std::vector<bool>> rays(const std::vector<Surface>& surfaces,
                                              const std::vector<lgh::LightDesc>& lights,
-                                             std::vector<float>* originW = nullptr,
-                                             bool clearsOrigins = lgh::gl::softwareRasterizer()) {
+                                             const Options& options = {}) {
     lgh::FrameTargets frame;
     const int width = static_cast<int>(surfaces.size());
     frame.resize(width, 1);
@@ -74,7 +82,8 @@ class ShadowRaySetup : public ::testing::Test {
 
     lgh::gl::SizedBuffer lightBuffer;
     lgh::uploadLights(lights, lightBuffer);
-    const auto rayCount = static_cast<GLsizeiptr>(surfaces.size() * lights.size());
+    const auto raysPerPixel = lights.size() * static_cast<std::size_t>(options.lightSamples);
+    const auto rayCount = static_cast<GLsizeiptr>(surfaces.size() * raysPerPixel);
     lgh::gl::Buffer origins;
     lgh::gl::Buffer targets;
     const std::vector<glm::vec4> nines(
@@ -85,9 +94,11 @@ class ShadowRaySetup : public ::testing::Test {
                          nines.data(), GL_DYNAMIC_STORAGE_BIT);
     lgh::ShadowRaySetupInputs inputs;
     inputs.layout.shadowedLights = static_cast<int>(lights.size());
+    inputs.layout.lightSamples = options.lightSamples;
     inputs.lights = lightBuffer.id();
     inputs.surfaceOffset = 1e-3F;
-    lgh::ShadowRaySetupPass pass(clearsOrigins);
+    inputs.seed = 12345;
+    lgh::ShadowRaySetupPass pass(options.clearsOrigins, options.unrollsLightLoops);
     pass.run(inputs, frame, origins.id(), targets.id());
     std::vector<glm::vec4> written(static_cast<std::size_t>(rayCount));
     glGetNamedBufferSubData(targets.id(), 0, rayCount * static_cast<GLsizeiptr>(sizeof(glm::vec4)),
@@ -95,14 +106,16 @@ class ShadowRaySetup : public ::testing::Test {
     std::vector<glm::vec4> writtenOrigins(surfaces.size());
     glGetNamedBufferSubData(origins.id(), 0, width * static_cast<GLsizeiptr>(sizeof(glm::vec4)),
                             writtenOrigins.data());
-    if (originW != nullptr) {
-      originW->clear();
-      for (const glm::vec4& origin : writtenOrigins) originW->push_back(origin.w);
+    if (options.originW != nullptr) {
+      options.originW->clear();
+      for (const glm::vec4& origin : writtenOrigins) options.originW->push_back(origin.w);
     }
+    if (options.targets != nullptr) *options.targets = written;
     std::vector<std::vector<bool>> result(surfaces.size(), std::vector<bool>(lights.size()));
     for (std::size_t p = 0; p < surfaces.size(); ++p) {
       for (std::size_t l = 0; l < lights.size(); ++l) {
-        result[p][l] = writtenOrigins[p].w > 0.0F && written[p * lights.size() + l].w >= 0.0F;
+        result[p][l] = writtenOrigins[p].w > 0.0F &&
+                       written[p * raysPerPixel + l * options.lightSamples].w >= 0.0F;
       }
     }
     return result;
@@ -163,11 +176,56 @@ TEST_F(ShadowRaySetup, BackgroundPixelsGetNoRaysAloneOrBesideSurfaces) {
   for (const bool clearsOrigins : {true, false}) {
     std::vector<float> originW;
     const std::vector<std::vector<bool>> got =
-        rays(surfaces, {sunFromAbove()}, &originW, clearsOrigins);
+        rays(surfaces, {sunFromAbove()}, {.originW = &originW, .clearsOrigins = clearsOrigins});
     for (std::size_t p = 0; p < surfaces.size(); ++p) {
       EXPECT_EQ(got[p][0], surfaces[p].drawn) << p << (clearsOrigins ? " cleared" : " stored");
       EXPECT_EQ(originW[p], surfaces[p].drawn ? 1.0F : 0.0F) << p;
     }
+  }
+}
+
+// A CPU rasteriser compiles the pass for the frame's numbers of lights and samples, so that its
+// loops over them unroll (passes/light_loops.hpp): the same targets to the bit as the loops give,
+// for sized lights of each kind (jittered: the random streams must match too), several samples
+// each, and for more lights than the unrolled programs take.
+TEST_F(ShadowRaySetup, UnrolledLoopsSetUpTheRaysTheLoopsDo) {
+  std::vector<Surface> surfaces(24);
+  for (std::size_t p = 0; p < surfaces.size(); ++p) {
+    surfaces[p].position = glm::vec3(0.1F * static_cast<float>(p), 0.0F, 0.0F);
+    surfaces[p].normal = glm::normalize(glm::vec3(0.05F * static_cast<float>(p), 0.2F, 1.0F));
+  }
+  surfaces[5].drawn = false;
+  const auto lightsOf = [](int count) {
+    std::vector<lgh::LightDesc> lights;
+    for (int i = 0; i < count; ++i) {
+      lgh::LightDesc light;
+      light.type = static_cast<lgh::LightType>(i % 3);  // directional, point, spot
+      light.position = {0.5F * static_cast<float>(i), 1.0F, 3.0F};
+      light.direction = {0.1F, -0.2F, -1.0F};
+      light.outerConeAngle = 1.2F;
+      light.radius = 0.2F;
+      light.angularRadius = 0.05F;
+      lights.push_back(light);
+    }
+    return lights;
+  };
+  for (const auto& [lightCount, samples] : {std::pair{3, 2}, std::pair{2, 1}, std::pair{11, 1}}) {
+    std::vector<glm::vec4> unrolled;
+    std::vector<glm::vec4> looped;
+    const auto lights = lightsOf(lightCount);
+    rays(surfaces, lights,
+         {.unrollsLightLoops = true, .lightSamples = samples, .targets = &unrolled});
+    rays(surfaces, lights,
+         {.unrollsLightLoops = false, .lightSamples = samples, .targets = &looped});
+    ASSERT_EQ(unrolled.size(), looped.size());
+    int jittered = 0;
+    for (std::size_t t = 0; t < unrolled.size(); ++t) {
+      if (surfaces[t / (lights.size() * static_cast<std::size_t>(samples))].drawn) {
+        EXPECT_EQ(unrolled[t], looped[t]) << lightCount << " lights, target " << t;
+        jittered += unrolled[t].w >= 0.0F ? 1 : 0;
+      }
+    }
+    EXPECT_GT(jittered, 20) << "rays were set up";
   }
 }
 

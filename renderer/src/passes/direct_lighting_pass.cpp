@@ -8,6 +8,7 @@
 #include "gl/shader_library.hpp"
 #include "gl/slots.hpp"
 #include "passes/composite_pass.hpp"
+#include "passes/light_loops.hpp"
 
 namespace lgh {
 
@@ -19,9 +20,13 @@ void bindGBuffer(const GBufferTargets& gbuffer) {
   glBindTextureUnit(LGH_UNIT_GBUFFER_LAYERS, gbuffer.layers.id());
 }
 
-GLuint DirectLightingPass::program(const BrdfFeatures& brdf,
+GLuint DirectLightingPass::program(const DirectLightingInputs& inputs,
                                    const std::optional<OutputPixels>& finalOutput) {
-  ProgramKey key{brdf.defines(), finalOutput};
+  std::string defines = inputs.brdf.defines();
+  if (unrollsLightLoops_) {
+    defines += lightCountDefines(inputs.lightCount) + shadowLayoutDefines(inputs.shadows);
+  }
+  ProgramKey key{std::move(defines), finalOutput};
   auto it = programs_.find(key);
   if (it == programs_.end()) {
     gl::Program program =
@@ -36,7 +41,7 @@ GLuint DirectLightingPass::program(const BrdfFeatures& brdf,
 
 void DirectLightingPass::run(const DirectLightingInputs& inputs, const CameraMatrices& camera,
                              FrameTargets& targets) {
-  const GLuint program = this->program(inputs.brdf, std::nullopt);
+  const GLuint program = this->program(inputs, std::nullopt);
   glBindImageTexture(LGH_IMAGE_OUTPUT, targets.direct.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
                      GL_RGBA16F);
   dispatch(program, inputs, camera, targets, allTiles(targets.width, targets.height));
@@ -46,11 +51,12 @@ void DirectLightingPass::run(const DirectLightingInputs& inputs, const CameraMat
 void DirectLightingPass::runToOutput(const DirectLightingInputs& inputs,
                                      const CameraMatrices& camera, const OutputSettings& output,
                                      OutputPixels pixels, FrameTargets& targets) {
-  const GLuint program = this->program(inputs.brdf, pixels);
+  const GLuint program = this->program(inputs, pixels);
   bindFrameOutput(program, output, pixels, targets, clearsBackground_);
   // Over a cleared output the tiles without a surface have nothing to store.
-  dispatch(program, inputs, camera, targets,
-           clearsBackground_ ? targets.tilesWithSurfaces() : allTiles(targets.width, targets.height));
+  dispatch(
+      program, inputs, camera, targets,
+      clearsBackground_ ? targets.tilesWithSurfaces() : allTiles(targets.width, targets.height));
   // Read next by the pixel pack pass or a read-back, as the composite's output is.
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                   GL_PIXEL_BUFFER_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |

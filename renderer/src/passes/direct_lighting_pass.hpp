@@ -39,20 +39,25 @@ struct DirectLightingInputs {
 
 class DirectLightingPass {
  public:
+  // `unrollsLightLoops` (passes/light_loops.hpp): as the device prefers (tests try both).
+  explicit DirectLightingPass(bool unrollsLightLoops = gl::softwareRasterizer())
+      : unrollsLightLoops_(unrollsLightLoops) {}
   void run(const DirectLightingInputs& inputs, const CameraMatrices& camera, FrameTargets& targets);
   void runToOutput(const DirectLightingInputs& inputs, const CameraMatrices& camera,
                    const OutputSettings& output, OutputPixels pixels, FrameTargets& targets);
 
  private:
-  GLuint program(const BrdfFeatures& brdf, const std::optional<OutputPixels>& finalOutput);
+  GLuint program(const DirectLightingInputs& inputs,
+                 const std::optional<OutputPixels>& finalOutput);
   void dispatch(GLuint program, const DirectLightingInputs& inputs, const CameraMatrices& camera,
                 FrameTargets& targets, const FrameTiles& tiles);
 
-  // By BrdfFeatures::defines() and the output written (none: FrameTargets::direct), built on
-  // first use.
+  // By their defines (BrdfFeatures::defines(), and the light counts where the loops unroll) and
+  // the output written (none: FrameTargets::direct), built on first use.
   using ProgramKey = std::pair<std::string, std::optional<OutputPixels>>;
   std::map<ProgramKey, gl::Program> programs_;
   bool clearsBackground_ = gl::softwareRasterizer();  // bindFrameOutput's clearFirst
+  bool unrollsLightLoops_;
 };
 
 }  // namespace lgh

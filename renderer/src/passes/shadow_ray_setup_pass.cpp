@@ -3,6 +3,7 @@
 #include "gl/shader_library.hpp"
 #include "gl/slots.hpp"
 #include "passes/direct_lighting_pass.hpp"
+#include "passes/light_loops.hpp"
 
 namespace lgh {
 namespace {
@@ -18,8 +19,20 @@ void setShadowRayUniforms(GLuint program, const ShadowRayLayout& layout) {
   glProgramUniform1i(program, location(program, "uVisibilityWords"), layout.words());
 }
 
-ShadowRaySetupPass::ShadowRaySetupPass(bool clearsOrigins)
-    : program_(gl::buildComputeProgram("shadow_ray_setup.comp")), clearsOrigins_(clearsOrigins) {}
+ShadowRaySetupPass::ShadowRaySetupPass(bool clearsOrigins, bool unrollsLightLoops)
+    : clearsOrigins_(clearsOrigins), unrollsLightLoops_(unrollsLightLoops) {
+  program(ShadowRayLayout{});  // compiled up front, as it always was
+}
+
+GLuint ShadowRaySetupPass::program(const ShadowRayLayout& layout) {
+  std::string defines = unrollsLightLoops_ ? shadowLayoutDefines(layout) : std::string();
+  auto found = programs_.find(defines);
+  if (found == programs_.end()) {
+    gl::Program built = gl::buildComputeProgram("shadow_ray_setup.comp", defines);
+    found = programs_.emplace(std::move(defines), std::move(built)).first;
+  }
+  return found->second.id();
+}
 
 // On a CPU rasteriser every pixel's origin goes to (0, 0, 0, 0), no surface, by a clear, and the
 // shader stores the origins of surfaces only (glsl/shadow_ray_setup.comp): there a shader's store
@@ -39,7 +52,7 @@ FrameTiles ShadowRaySetupPass::tilesToRun(const FrameTargets& frame) const {
 
 void ShadowRaySetupPass::run(const ShadowRaySetupInputs& inputs, const FrameTargets& frame,
                              GLuint origins, GLuint targets) {
-  const GLuint program = program_.id();
+  const GLuint program = this->program(inputs.layout);
   glUseProgram(program);
   setShadowRayUniforms(program, inputs.layout);
   glProgramUniform2i(program, location(program, "uFrameSize"), frame.width, frame.height);

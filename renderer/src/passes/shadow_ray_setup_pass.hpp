@@ -6,6 +6,8 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
+#include <string>
 
 #include "gl/gl_objects.hpp"
 #include "gl/software_rasterizer.hpp"
@@ -31,8 +33,10 @@ struct ShadowRaySetupInputs {
 
 class ShadowRaySetupPass {
  public:
-  // `clearsOrigins`: as the device prefers (tests try both).
-  explicit ShadowRaySetupPass(bool clearsOrigins = gl::softwareRasterizer());
+  // `clearsOrigins` and `unrollsLightLoops` (passes/light_loops.hpp): as the device prefers
+  // (tests try both).
+  explicit ShadowRaySetupPass(bool clearsOrigins = gl::softwareRasterizer(),
+                              bool unrollsLightLoops = gl::softwareRasterizer());
   void run(const ShadowRaySetupInputs& inputs, const FrameTargets& frame, GLuint origins,
            GLuint targets);
   // The shadowed brute-force reference's rays: from every pixel to each of `count` point lights
@@ -47,9 +51,14 @@ class ShadowRaySetupPass {
   // Where the origins were cleared, the tiles that can show a surface; else every tile.
   FrameTiles tilesToRun(const FrameTargets& frame) const;
 
-  gl::Program program_;
+  // The program for `layout`: compiled for its numbers of lights where the loops unroll
+  // (passes/light_loops.hpp), built on first use.
+  GLuint program(const ShadowRayLayout& layout);
+
+  std::map<std::string, gl::Program> programs_;  // by their defines
   gl::Program pointLightProgram_ = gl::Program::empty();
   bool clearsOrigins_;
+  bool unrollsLightLoops_;
 };
 
 // Sets the uniforms of glsl/include/ray_batch.glsl on `program`.
