@@ -37,8 +37,10 @@ class DirectLightingPassTest : public ::testing::Test {
     std::vector<std::array<std::uint8_t, 4>> albedo;
     std::vector<std::array<std::uint8_t, 4>> material;
     for (int p = 0; p < kWidth * kHeight; ++p) {
-      const float x = 0.1F * static_cast<float>(p % kWidth);
-      const float y = 0.1F * static_cast<float>(p / kWidth);
+      const int column = p % kWidth;
+      const int row = p / kWidth;
+      const float x = 0.1F * static_cast<float>(column);
+      const float y = 0.1F * static_cast<float>(row);
       positions.emplace_back(x, y, 0.0F, p % 5 == 4 ? 0.0F : 1.0F);
       normals.emplace_back(glm::normalize(glm::vec3(0.3F * x - 0.3F, 0.2F * y, 1.0F)), 0.0F);
       albedo.push_back({static_cast<std::uint8_t>(40 + 9 * (p % 20)), 128, 200, 255});
