@@ -212,6 +212,10 @@ std::optional<bool> Renderer::scenePending(const RenderRequest& request) const {
   return impl_->cache.inProgress(request.scene, loadOptionsOf(request));
 }
 
+std::uint64_t Renderer::sceneSourceBytes(const RenderRequest& request) const {
+  return impl_->cache.sourceBytes(request.scene);
+}
+
 std::size_t Renderer::prefetchDepth() const { return impl_->cache.prefetchDepth(); }
 
 std::uint64_t Renderer::Impl::submit(const RenderRequest& request) {

@@ -384,22 +384,54 @@ std::size_t RenderWorker::choosePosition(const JobPiece& piece, const std::vecto
   }
 }
 
+namespace {
+
+bool distinctAssetFiles(const std::vector<const RenderTicket*>& tickets) {
+  std::vector<const std::string*> paths;
+  for (const RenderTicket* ticket : tickets) {
+    const lgh::SceneSource& scene = ticket->request().scene;
+    if (scene.kind != lgh::SceneSource::Kind::AssetPath) return false;
+    paths.push_back(&scene.assetPath);
+  }
+  std::sort(paths.begin(), paths.end(), [](auto* a, auto* b) { return *a < *b; });
+  return std::adjacent_find(paths.begin(), paths.end(),
+                            [](auto* a, auto* b) { return *a == *b; }) == paths.end();
+}
+
+}  // namespace
+
 // Each ticket is hinted once, when it enters the look-ahead window: the window moves on by about
 // one ticket per render, and a hint costs a cache key (an upload's is a hash of its bytes). The
 // ticket about to be drawn is in the window too, first: the first of a batch was never hinted, so
 // its parse queued behind the whole window's (20-70 ms per batch on the H200 machine).
+// A window hinted whole (a batch's start, nothing of it parsed yet) of distinct asset files is
+// hinted smallest file first, which is the order the parser takes them in: the render thread
+// draws ahead whatever is ready (choosePosition), so a large first asset no longer holds up the
+// whole start while the small ones wait behind it (docs/DAEMON.md, "Batches"). A window that
+// names a scene twice keeps its order: the scene cache takes a hint right after the same
+// scene's for views of one asset drawn back to back.
 void RenderWorker::prefetch(const std::shared_ptr<const RenderTicket>& current,
                             const LookAhead& next) {
   std::vector<const RenderTicket*> window;
   window.reserve(next.size() + 1);
-  const auto hint = [&](const RenderTicket& ticket) {
-    window.push_back(&ticket);
-    if (std::find(hinted_.begin(), hinted_.end(), &ticket) == hinted_.end()) {
-      renderer_->prefetch(ticket.request());
-    }
+  window.push_back(current.get());
+  for (const std::shared_ptr<const RenderTicket>& ticket : next) window.push_back(ticket.get());
+  const auto unhinted = [&](const RenderTicket* ticket) {
+    return std::find(hinted_.begin(), hinted_.end(), ticket) == hinted_.end();
   };
-  hint(*current);
-  for (const std::shared_ptr<const RenderTicket>& ticket : next) hint(*ticket);
+  std::vector<const RenderTicket*> order;
+  std::copy_if(window.begin(), window.end(), std::back_inserter(order), unhinted);
+  if (order.size() == window.size() && distinctAssetFiles(order)) {
+    std::vector<std::pair<std::uint64_t, const RenderTicket*>> sized;
+    sized.reserve(order.size());
+    for (const RenderTicket* ticket : order) {
+      sized.emplace_back(renderer_->sceneSourceBytes(ticket->request()), ticket);
+    }
+    std::stable_sort(sized.begin(), sized.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t i = 0; i < sized.size(); ++i) order[i] = sized[i].second;
+  }
+  for (const RenderTicket* ticket : order) renderer_->prefetch(ticket->request());
   hinted_ = std::move(window);
 }
 

@@ -312,5 +312,37 @@ TEST(ThumbnailsSceneParsers, ReadyScenesAreDrawnAheadOfASlowOneAndAnswersKeepThe
   }
 }
 
+// With one parser process, a batch of distinct files that begins with a large one: its start is
+// hinted smallest file first, so that the parser does the boxes before the engine and the render
+// thread draws them while the engine parses, rather than waiting for the engine first. The answer
+// keeps the request's order.
+TEST(ThumbnailsSceneParsers, ABatchStartsWithItsSmallestFilesAndAnswersKeepTheirOrder) {
+  const json assets = json::array(
+      {"2CylinderEngine-glTF-Binary/2CylinderEngine.glb", "BoxTextured-glTF-Binary/BoxTextured.glb",
+       "BoxTexcoords-glTF/boxTexcoords.gltf", "BoxBadNormals-glTF-Binary/BoxBadNormals.glb"});
+  const json request = {{"assets", assets},
+                        {"width", 32},
+                        {"height", 32},
+                        {"format", "ndjson"},
+                        {"name_template", "{index}.png"}};
+  const DaemonProcess daemon({"--scene-parsers", "1", "--scene-cache-mb", "0"});
+  auto http = daemon.client(std::chrono::seconds(120));
+  const auto result = postJson(*http, "/v1/thumbnails", request);
+  ASSERT_TRUE(result);
+  ASSERT_EQ(result->status, 200) << result->body.substr(0, 300);
+  std::vector<json> lines;
+  for (const json& line : ndjsonLines(result->body)) {
+    if (line.contains("index")) lines.push_back(line);
+  }
+  ASSERT_EQ(lines.size(), assets.size());
+  for (std::size_t i = 0; i < assets.size(); ++i) {
+    EXPECT_EQ(lines[i].at("index"), i) << "NDJSON lines in the request's order";
+    EXPECT_EQ(lines[i].at("asset"), assets[i]);
+    EXPECT_EQ(lines[i].at("status"), "ok") << lines[i].dump().substr(0, 300);
+  }
+  EXPECT_GE(metricValue(http->Get("/metrics")->body, "lghd_renders_drawn_ahead_total"), 1.0)
+      << "a box was drawn while the engine was still being parsed";
+}
+
 }  // namespace
 }  // namespace lghd::test

@@ -5,6 +5,7 @@
 // both parses start at their hints (scene/scene_cache.hpp directly).
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -123,6 +124,23 @@ TEST_F(ScenePrefetchHints, WithTheCacheOnOneParseServesEveryHintOfAScene) {
   EXPECT_TRUE(cache.get(normals).prefetched);
   EXPECT_TRUE(cache.get(box).hit);
   EXPECT_EQ(cache.stats().misses, 2U);
+}
+
+// What a hint's parse is guessed to cost by (lghd's render worker hints a batch's start smallest
+// first): an asset file's size, an inline GLB's bytes, nothing for a built-in scene or a path
+// that does not resolve.
+TEST_F(ScenePrefetchHints, SourceBytesAreTheFileOrTheUploadsSize) {
+  const lgh::SceneCache cache(options_);
+  const std::string engine = "2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+  EXPECT_EQ(cache.sourceBytes(asset(engine)),
+            std::filesystem::file_size(lgh::test::assimpGltfDir() / engine));
+  lgh::SceneSource inline_;
+  inline_.kind = lgh::SceneSource::Kind::InlineGlb;
+  inline_.glbBytes.assign(1234, 0);
+  EXPECT_EQ(cache.sourceBytes(inline_), 1234U);
+  EXPECT_EQ(cache.sourceBytes(lgh::SceneSource{}), 0U);  // the built-in demo
+  EXPECT_EQ(cache.sourceBytes(asset("no/such/file.glb")), 0U);
+  EXPECT_EQ(cache.sourceBytes(asset("../outside.glb")), 0U);
 }
 
 }  // namespace

@@ -61,6 +61,9 @@ class Renderer {
   // to draw can draw one whose scene is at hand first. nullopt for an uploaded scene (glTF or
   // GLB bytes in the request), which is not looked up: its key is a hash of all its bytes.
   std::optional<bool> scenePending(const RenderRequest& request) const;
+  // The bytes `request`'s scene is parsed from (an asset file's size, an upload's bytes; 0 for a
+  // built-in scene): a guess at its parse's cost, for a caller that orders its prefetch() hints.
+  std::uint64_t sceneSourceBytes(const RenderRequest& request) const;
   // How many of the requests to come are worth a prefetch() hint: as many as scenes parse side
   // by side (RendererOptions::sceneWorker.processes, 1 without a parser worker).
   std::size_t prefetchDepth() const;

@@ -187,8 +187,31 @@ std::string SceneCache::assetKey(const std::string& assetPath) const {
     });
     if (assetKeys_.size() >= kMaxAssetKeys) assetKeys_.clear();
   }
-  assetKeys_[assetPath] = {key, now};
+  const bool sized = size != static_cast<std::uintmax_t>(-1);  // file_size's error value
+  assetKeys_[assetPath] = {key, sized ? size : 0, now};
   return key;
+}
+
+std::uint64_t SceneCache::sourceBytes(const SceneSource& source) const {
+  switch (source.kind) {
+    case SceneSource::Kind::Builtin:
+      return 0;
+    case SceneSource::Kind::InlineGlb:
+      return source.glbBytes.size();
+    case SceneSource::Kind::UploadedGltf: {
+      std::uint64_t bytes = 0;
+      for (const auto& [name, file] : source.uploadedFiles) bytes += file.size();
+      return bytes;
+    }
+    case SceneSource::Kind::AssetPath:
+      try {
+        assetKey(source.assetPath);  // stats the file, or reuses the last look
+      } catch (const Error&) {
+        return 0;
+      }
+      return assetKeys_.at(source.assetPath).bytes;
+  }
+  return 0;
 }
 
 namespace {

@@ -121,6 +121,10 @@ class SceneCache {
   // not looked up: its key is a hash of all its bytes, too dear to compute on every look.
   std::optional<bool> inProgress(const SceneSource& source,
                                  const SceneLoadOptions& options = {}) const;
+  // The bytes `source` is parsed from: an asset file's size (a .gltf's own, without the side
+  // files it names), an uploaded or inline scene's bytes; 0 for a built-in scene or a path that
+  // does not resolve (get() reports that). A cheap guess at the parse's cost.
+  std::uint64_t sourceBytes(const SceneSource& source) const;
   // Scenes hinted ahead: eight per parser process (2 without them, parsed side by side on this
   // process's prefetch threads), at most 64, so that the
   // look-ahead covers a slow asset's parse (a draco or textured asset took 20-56 ms to parse on
@@ -208,6 +212,7 @@ class SceneCache {
   static constexpr std::size_t kMaxAssetKeys = 4096;
   struct AssetKey {
     std::string key;
+    std::uintmax_t bytes = 0;  // the file's size
     std::chrono::steady_clock::time_point checked;
   };
   mutable std::unordered_map<std::string, AssetKey> assetKeys_;
