@@ -14,7 +14,7 @@ binary, assets = sys.argv[1], sys.argv[2]
 d = bt.Daemon(binary, assets, ["--scene-cache-mb", "0", *sys.argv[3:]])
 try:
     ok, failed = bt.renderable(d, bt.find_assets(assets), 256)
-    batch = ok * 10
+    batch = ok * int(os.environ.get("COPIES", "10"))  # the eighteenth session ran COPIES=1
     d.thumbnails(batch, 256)
     pid = d.process.pid
     tid = [t for t in os.listdir(f"/proc/{pid}/task")
@@ -28,14 +28,14 @@ try:
                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     time.sleep(1.0)
     start = time.perf_counter()
-    for _ in range(2):
+    for _ in range(int(os.environ.get("BATCHES", "2"))):  # and BATCHES=20
         d.thumbnails(batch, 256)
     wall = time.perf_counter() - start
     time.sleep(0.2)
     rec.send_signal(2); rec_on.send_signal(2); rec.wait(); rec_on.wait()
 finally:
     d.stop()
-n = 2 * len(batch)
+n = int(os.environ.get("BATCHES", "2")) * len(batch)
 # Pass 1, without stacks: every switch, for the moments the render thread got a CPU back.
 plain = subprocess.run(perf + ["script", "-i", "/tmp/on.data", "-G"], env=env,
                        capture_output=True, text=True).stdout
