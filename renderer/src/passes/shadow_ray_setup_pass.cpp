@@ -21,7 +21,9 @@ void setShadowRayUniforms(GLuint program, const ShadowRayLayout& layout) {
 
 ShadowRaySetupPass::ShadowRaySetupPass(bool clearsOrigins, bool unrollsLightLoops)
     : clearsOrigins_(clearsOrigins), unrollsLightLoops_(unrollsLightLoops) {
-  program(ShadowRayLayout{});  // compiled up front, as it always was
+  // A GPU's one program, compiled up front as it always was; a CPU rasteriser's are compiled for
+  // the layouts its frames bring.
+  if (!unrollsLightLoops_) program(ShadowRayLayout{});
 }
 
 GLuint ShadowRaySetupPass::program(const ShadowRayLayout& layout) {
