@@ -421,18 +421,20 @@ void RenderWorker::prefetch(const std::shared_ptr<const RenderTicket>& current,
   };
   std::vector<const RenderTicket*> order;
   std::copy_if(window.begin(), window.end(), std::back_inserter(order), unhinted);
-  if (order.size() == window.size() && distinctAssetFiles(order)) {
-    std::vector<std::pair<std::uint64_t, const RenderTicket*>> sized;
-    sized.reserve(order.size());
-    for (const RenderTicket* ticket : order) {
-      sized.emplace_back(renderer_->sceneSourceBytes(ticket->request()), ticket);
-    }
-    std::stable_sort(sized.begin(), sized.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (std::size_t i = 0; i < sized.size(); ++i) order[i] = sized[i].second;
-  }
+  if (order.size() == window.size() && distinctAssetFiles(order)) sortSmallestSourceFirst(order);
   for (const RenderTicket* ticket : order) renderer_->prefetch(ticket->request());
   hinted_ = std::move(window);
+}
+
+void RenderWorker::sortSmallestSourceFirst(std::vector<const RenderTicket*>& tickets) const {
+  std::vector<std::pair<std::uint64_t, const RenderTicket*>> sized;
+  sized.reserve(tickets.size());
+  for (const RenderTicket* ticket : tickets) {
+    sized.emplace_back(renderer_->sceneSourceBytes(ticket->request()), ticket);
+  }
+  std::stable_sort(sized.begin(), sized.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t i = 0; i < sized.size(); ++i) tickets[i] = sized[i].second;
 }
 
 void RenderWorker::runPiece(const JobPiece& piece) {

@@ -128,6 +128,8 @@ class RenderWorker {
   static constexpr auto kDrawAheadWait = std::chrono::seconds(1);
   static constexpr auto kDrawAheadPoll = std::chrono::microseconds(200);
   void prefetch(const std::shared_ptr<const RenderTicket>& current, const LookAhead& next);
+  // `tickets` (distinct asset files) in ascending size of their scenes' sources, ties in order.
+  void sortSmallestSourceFirst(std::vector<const RenderTicket*>& tickets) const;
 
   // --- Frames in flight (render thread, except encode()) ---
   struct FrameInFlight {

@@ -50,7 +50,7 @@ FrameTiles GBufferPass::surfaceTilesOf(const Inputs& inputs, const GpuScene& gpu
   // Displacement moves surfaces off the positions the bounds were taken over.
   const bool displaced =
       std::ranges::any_of(gpuScene.drawItems(), [&](const GpuScene::DrawItem& item) {
-        return surfaceProgramKey(inputs.materials->at(item.material), item, false).displaced;
+        return displacedMaterial(inputs.materials->at(item.material));
       });
   if (displaced) return all;
   const float margin = 0.5F * std::max(inputs.primitives->pointSize, inputs.primitives->lineWidth);

@@ -19,11 +19,6 @@ float dielectricF0(float ior) {
   return r * r;
 }
 
-bool displacedMaterial(const Material& material) {
-  return material.surface.technique == SurfaceDetail::Displacement &&
-         material.surface.heightTexture.valid();
-}
-
 // The classic model's exponent and specular colour (Cook-Torrance: F0).
 float modelExponent(const Material& m, MaterialModel model) {
   switch (model) {
@@ -179,6 +174,11 @@ std::uint32_t materialFeatures(const Material& material, const GpuScene::DrawIte
                                     [](const TextureRef* texture) { return texture->valid(); });
   if (textured || (features & kMaterialLayers) != 0U) features |= kMaterialSurfaceFrame;
   return features;
+}
+
+bool displacedMaterial(const Material& material) {
+  return material.surface.technique == SurfaceDetail::Displacement &&
+         material.surface.heightTexture.valid();
 }
 
 SurfaceProgramKey surfaceProgramKey(const Material& material, const GpuScene::DrawItem& item,

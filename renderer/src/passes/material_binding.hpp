@@ -21,6 +21,10 @@ MaterialModel effectiveModel(const Material& material, bool unlit);
 // The kMaterial* features (passes/surface_programs.hpp) the G-buffer shader needs for this draw.
 std::uint32_t materialFeatures(const Material& material, const GpuScene::DrawItem& item);
 
+// Whether the material's surface is displacement-mapped (drawn as tessellated patches, its
+// positions moved off the mesh's).
+bool displacedMaterial(const Material& material);
+
 SurfaceProgramKey surfaceProgramKey(const Material& material, const GpuScene::DrawItem& item,
                                     bool forward);
 
