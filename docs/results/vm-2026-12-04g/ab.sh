@@ -1,5 +1,5 @@
 #!/bin/bash
-# Eighteenth session: alternated cold runs of several lghd set-ups on the VM, each the median of
+# Nineteenth session (a copy of vm-2026-12-04f/ab.sh): alternated cold runs of several lghd set-ups on the VM, each the median of
 # R rounds (default 5) of the 31 thumbnails:
 #   R=9 ab.sh PAIRS "LABEL|ENV|BINARY|LGHD FLAGS" ...   (ENV e.g. X=1 for none)
 n=$1; shift
